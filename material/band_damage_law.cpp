@@ -1,0 +1,40 @@
+#include "material/band_damage_law.hpp"
+
+#include "material/driving_force.hpp"
+
+namespace ecm {
+
+void BandDamageParams::validate() const {
+  elastic.validate();
+  law().validate();
+}
+
+BandDamageLaw::BandDamageLaw(const BandDamageParams& p)
+    : law_((p.validate(), p.law())),
+      stiffness_(elasticStiffness(p.elastic)),
+      compliance_(elasticCompliance(p.elastic)),
+      onsetY_(damageFunction(law_, 1.0)) {}
+
+BandResponse BandDamageLaw::evaluate(const LoadingSurface& surface, const Voigt& strain, bool loadingTangent) const {
+  const double x0 = surface.integrity, threshold = surface.threshold;
+  BandResponse r;
+  const Voigt effective = stiffness_ * strain;
+  const DrivingForce y = drivingForce(effective, compliance_);  // Eq. (12)
+  r.drivingForce = y.value;
+  r.drivingForceRate = y.stressGradient.transpose() * stiffness_;
+  r.loading = y.value > threshold;
+  r.integrity = r.loading ? solveIntegrity(law_, y.value, x0) : x0;
+  r.stress = r.integrity * effective;  // Eq. (11)
+  const bool onSurface = y.value >= threshold * (1.0 - 1e-12) && y.value > 0.0;
+  if ((r.loading || (loadingTangent && onSurface)) && r.integrity > 0.0) {
+    // dx/deps = (dx/dY) (dY/dsigma) a, with dx/dY = 1 / F'(x)
+    const double dxdy = 1.0 / damageFunctionSlope(law_, r.integrity);
+    const Eigen::RowVector3d dxde = dxdy * r.drivingForceRate;
+    r.tangent = r.integrity * stiffness_ + effective * dxde;
+  } else {
+    r.tangent = r.integrity * stiffness_;
+  }
+  return r;
+}
+
+}  // namespace ecm

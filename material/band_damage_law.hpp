@@ -1,0 +1,68 @@
+#pragma once
+// The band's damage law, Eqs. (11)-(13): sigma_L = (1 - D) a_L : eps_L, damage driven by the
+// positive part of the effective stress, F(D) of Eq. (13), D irreversible.
+#include "material/damage_function.hpp"
+#include "material/linear_elastic.hpp"
+
+namespace ecm {
+
+struct BandDamageParams {
+  ElasticParams elastic;  // a_L
+  double tensileStrength = 0.0;
+  double softeningModulus = 0.0;
+  double softeningExponent = 0.0;
+  void validate() const;
+  DamageLawParams law() const {
+    return {elastic.youngsModulus, tensileStrength, softeningModulus, softeningExponent};
+  }
+};
+
+// Response of the law to a total strain, from the integrity at the start of the increment.
+struct BandResponse {
+  Voigt stress = Voigt::Zero();
+  Tangent tangent = Tangent::Zero();  // consistent: spectral split when loading, secant otherwise
+  double integrity = 1.0;             // x = 1 - D at the end of the increment
+  double drivingForce = 0.0;          // Y
+  Eigen::RowVector3d drivingForceRate = Eigen::RowVector3d::Zero();  // dY / d eps_L
+  bool loading = false;               // damage grew in this evaluation
+};
+
+class BandDamageLaw {
+ public:
+  struct State {
+    double integrity = 1.0;  // x = 1 - D, in (0, 1]
+    double damage() const { return 1.0 - integrity; }
+  };
+
+  explicit BandDamageLaw(const BandDamageParams& p);
+
+  // The damage threshold at the start of an increment: Y <= F(x0), Eq. (12).
+  struct LoadingSurface {
+    double integrity;  // x0
+    double threshold;  // F(x0)
+  };
+  LoadingSurface loadingSurface(double integrity) const { return {integrity, damageFunction(law_, integrity)}; }
+
+  // Pure: does not change any state. The surface is that of the start of the increment.
+  // With loadingTangent, a point exactly on the loading surface gets the one-sided loading
+  // tangent (MODEL-NOTES pitfall 2) instead of the secant.
+  BandResponse evaluate(const LoadingSurface& surface, const Voigt& strain, bool loadingTangent = false) const;
+  BandResponse evaluate(double integrity, const Voigt& strain, bool loadingTangent = false) const {
+    return evaluate(loadingSurface(integrity), strain, loadingTangent);
+  }
+
+  // Energy per unit band volume dissipated when x drops from xOld to xNew.
+  double dissipation(double xOld, double xNew) const { return dissipationBetween(law_, xOld, xNew); }
+  double onsetDrivingForce() const { return onsetY_; }  // F(D = 0) = f_t'^2 / (2E)
+  const DamageLawParams& law() const { return law_; }
+  const Tangent& stiffness() const { return stiffness_; }
+  const Tangent& compliance() const { return compliance_; }
+
+ private:
+  DamageLawParams law_;
+  Tangent stiffness_;
+  Tangent compliance_;
+  double onsetY_;
+};
+
+}  // namespace ecm

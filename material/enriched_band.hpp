@@ -1,0 +1,103 @@
+#pragma once
+// The enriched two-phase material point, Eqs. (1)-(10): an elastic bulk with an embedded
+// localization band of width h (bandWidth) inside the effective size H (effectiveSize),
+// f = h/H (volumeFraction). The band obeys the damage law of Eqs. (11)-(13); traction
+// continuity (6) couples the phases. Before onset the point is elastic and has no band state.
+#include <optional>
+
+#include "material/band_damage_law.hpp"
+#include "material/effective_size.hpp"
+
+namespace ecm {
+
+struct EnrichedParams {
+  BandDamageParams band;    // elastic constants (shared by bulk and band) and the band's damage law
+  double bandWidth = 0.0;   // h (mm)
+  void validate() const;
+};
+
+// Everything a cracked point carries (72 bytes); an intact point carries none of it.
+struct BandState {
+  Vec2 crackNormal = Vec2::Zero();  // n, fixed at onset (first principal direction)
+  Vec2 jump = Vec2::Zero();         // [u] accumulated since onset (mm)
+  Voigt onsetStrain = Voigt::Zero();// strain of both phases at onset; eps_L = this + N [u] / h
+  double integrity = 1.0;           // x = 1 - D of the band
+  double volumeFraction = 0.0;      // f = h / H, Eq. (1)
+
+  double damage() const { return 1.0 - integrity; }
+  double normalJump() const { return crackNormal.dot(jump); }
+  Vec2 slidingDirection() const { return {-crackNormal[1], crackNormal[0]}; }
+};
+
+struct EnrichedState {
+  Voigt strain = Voigt::Zero();   // macroscopic strain
+  std::optional<BandState> band;  // present once the point has cracked
+};
+
+// Both phases at a trial (strain, jump): what Newton on traction continuity needs.
+struct BandEquilibrium {
+  Voigt bandStrain = Voigt::Zero();  // eps_L, Eq. (3) integrated
+  BandResponse band;                 // sigma_L and its tangent a_L^T, Eqs. (5), (11)
+  Voigt stress = Voigt::Zero();      // sigma = a_b : eps_b, Eq. (4) integrated
+  Vec2 residual = Vec2::Zero();      // (sigma - sigma_L) n, Eq. (6)
+  Mat2 jacobian = Mat2::Zero();      // K = -d residual / d[u] = C / (1 - f), Eq. (9)
+};
+
+class EnrichedBand {
+ public:
+  explicit EnrichedBand(const EnrichedParams& p);
+
+  // The UMAT-style update of a point. On failure the state is left unchanged.
+  UpdateResult update(EnrichedState& state, const Voigt& strainIncrement, const EffectiveSize& size) const;
+
+  // The two halves of update(), for callers (MPM) that keep band states in a side array.
+  // Intact point: elastic, or onset inside the increment; then `onset` receives the new band
+  // state and the rest of the increment is taken cracked.
+  UpdateResult updateIntact(Voigt& strain, const Voigt& strainIncrement, const EffectiveSize& size,
+                            std::optional<BandState>& onset) const {
+    const Voigt end = strain + strainIncrement;
+    const Voigt s = stiffness() * end;
+    // Y <= (c11 + |c12|)/2 |sigma|^2: most intact updates stop here, as cheap as elastic.
+    if (onsetBound_ * (s[0] * s[0] + s[1] * s[1] + 2.0 * s[2] * s[2]) < law_.onsetDrivingForce()) {
+      strain = end;
+      return {s, stiffness()};
+    }
+    return updateIntactSlow(strain, strainIncrement, size, onset);
+  }
+  UpdateResult updateCracked(BandState& band, Voigt& strain, const Voigt& strainIncrement) const;
+
+  // Pure evaluation of both phases at a trial jump (used by Newton and by opening control).
+  BandEquilibrium equilibrium(const BandState& band, const Voigt& strain, const Vec2& jump,
+                              bool loadingTangent) const {
+    return equilibrium(band, law_.loadingSurface(band.integrity), strain, jump, loadingTangent);
+  }
+  BandEquilibrium equilibrium(const BandState& band, const BandDamageLaw::LoadingSurface& surface,
+                              const Voigt& strain, const Vec2& jump, bool loadingTangent) const;
+  // Consistent tangent d sigma / d eps at a converged equilibrium, Eq. (10).
+  Tangent consistentTangent(const BandState& band, const BandEquilibrium& eq) const;
+
+  // Fraction alpha in (0, 1] of the increment at which the onset criterion, Eq. (12) with
+  // D = 0, is first met; nullopt if it is not met within the increment.
+  std::optional<double> onsetFraction(const Voigt& strain, const Voigt& strainIncrement) const;
+  // Damage driving force of the intact point's stress (onset when >= onsetDrivingForce()).
+  double intactDrivingForce(const Voigt& strain) const;
+
+  const BandDamageLaw& bandLaw() const { return law_; }
+  const Tangent& stiffness() const { return law_.stiffness(); }
+  double bandWidth() const { return bandWidth_; }
+  double tensileStrength() const { return law_.law().tensileStrength; }
+
+  static constexpr int kMaxIterations = 60;
+  static constexpr double kRelativeTolerance = 1e-10;  // |residual| <= this * f_t' + kRoundOff |a eps|
+  static constexpr double kRoundOff = 1e-13;
+
+ private:
+  UpdateResult updateIntactSlow(Voigt& strain, const Voigt& strainIncrement, const EffectiveSize& size,
+                                std::optional<BandState>& onset) const;
+
+  BandDamageLaw law_;
+  double bandWidth_;
+  double onsetBound_;  // (c11 + |c12|)/2: Y <= onsetBound_ |sigma|^2, a cheap no-onset test
+};
+
+}  // namespace ecm

@@ -1,0 +1,83 @@
+#include "material/material.hpp"
+
+#include "material/parameter_check.hpp"
+
+namespace ecm {
+
+const char* toString(ModelKind k) {
+  switch (k) {
+    case ModelKind::LinearElastic: return "linear_elastic";
+    case ModelKind::SmearedCrack: return "smeared_crack";
+    case ModelKind::Enriched: return "enriched";
+  }
+  return "?";
+}
+
+void MaterialParams::validate() const {
+  elastic.validate();
+  requireInRange("density (t/mm^3)", density, 0.0, 1e300, true);
+  if (model == ModelKind::LinearElastic) return;
+  if (model == ModelKind::SmearedCrack && regularisedForSize > 0.0) {
+    requireInRange("fracture_energy GF (N/mm)", fractureEnergy, 0.0, 1e300);
+    BandDamageParams b = band();
+    b.softeningModulus = 1.0;  // replaced by the regularised value
+    b.validate();
+    return;
+  }
+  band().validate();
+  if (model == ModelKind::Enriched) enriched().validate();
+}
+
+namespace {
+std::variant<LinearElastic, SmearedCrack, EnrichedBand> makeModel(const MaterialParams& p) {
+  switch (p.model) {
+    case ModelKind::LinearElastic: return LinearElastic(p.elastic);
+    case ModelKind::SmearedCrack: {
+      BandDamageParams b = p.band();
+      if (p.regularisedForSize > 0.0)
+        b.softeningModulus = regularisedSofteningModulus(b.law(), p.fractureEnergy, p.regularisedForSize);
+      return SmearedCrack(b);
+    }
+    case ModelKind::Enriched: return EnrichedBand(p.enriched());
+  }
+  throw ParameterError("unknown model kind");
+}
+}  // namespace
+
+Material::Material(const MaterialParams& p)
+    : params_((p.validate(), p)), stiffness_(elasticStiffness(p.elastic)), model_(makeModel(p)) {
+  if (const auto* s = smeared()) params_.softeningModulus = s->law().law().softeningModulus;
+}
+
+UpdateResult Material::update(MaterialPoint& point, const Voigt& increment, const EffectiveSize& size) const {
+  struct Visitor {
+    MaterialPoint& p;
+    const Voigt& d;
+    const EffectiveSize& size;
+    UpdateResult operator()(const LinearElastic& m) const {
+      LinearElastic::State s{p.strain};
+      UpdateResult r = m.update(s, d);
+      p.strain = s.strain;
+      return r;
+    }
+    UpdateResult operator()(const SmearedCrack& m) const {
+      SmearedCrack::State s{p.strain, p.integrity};
+      UpdateResult r = m.update(s, d);
+      p.strain = s.strain;
+      p.integrity = s.integrity;
+      return r;
+    }
+    UpdateResult operator()(const EnrichedBand& m) const {
+      return p.band ? m.updateCracked(*p.band, p.strain, d) : m.updateIntact(p.strain, d, size, p.band);
+    }
+  };
+  return std::visit(Visitor{point, increment, size}, model_);
+}
+
+Voigt Material::stress(const MaterialPoint& point) const {
+  if (const auto* e = enriched(); e && point.band) return e->equilibrium(*point.band, point.strain, point.band->jump, false).stress;
+  const double x = params_.model == ModelKind::SmearedCrack ? point.integrity : 1.0;
+  return x * (stiffness_ * point.strain);
+}
+
+}  // namespace ecm

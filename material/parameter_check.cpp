@@ -1,0 +1,19 @@
+#include "material/parameter_check.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace ecm {
+
+void requireInRange(const char* name, double value, double lo, double hi, bool loClosed, bool hiClosed) {
+  const bool aboveLo = loClosed ? value >= lo : value > lo;
+  const bool belowHi = hiClosed ? value <= hi : value < hi;
+  if (std::isfinite(value) && aboveLo && belowHi) return;
+  std::ostringstream msg;
+  msg.precision(10);
+  msg << "parameter '" << name << "' = " << value << " is outside the allowed range "
+      << (loClosed ? "[" : "(") << lo << ", " << hi << (hiClosed ? "]" : ")");
+  throw ParameterError(msg.str());
+}
+
+}  // namespace ecm

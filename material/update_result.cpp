@@ -1,0 +1,14 @@
+#include "material/update_result.hpp"
+
+namespace ecm {
+
+const char* toString(UpdateStatus s) {
+  switch (s) {
+    case UpdateStatus::Converged: return "converged";
+    case UpdateStatus::NotConverged: return "not converged";
+    case UpdateStatus::SnapBack: return "snap-back";
+  }
+  return "?";
+}
+
+}  // namespace ecm

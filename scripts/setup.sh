@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages ecm needs, only those that are missing (idempotent, quiet).
+set -euo pipefail
+packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libgsl-dev libyaml-cpp-dev
+          libgtest-dev googletest libbenchmark-dev gnuplot-nox libcli11-dev nlohmann-json3-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}" >&2
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi

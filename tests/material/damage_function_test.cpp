@@ -1,0 +1,89 @@
+// The damage function F(D) of Eq. (13) and the quantities derived from it.
+#include "material/damage_function.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "paper_concrete.hpp"
+
+namespace ecm {
+namespace {
+
+const DamageLawParams kLaw{test::kE, test::kFt, test::kEp, test::kN};
+
+TEST(DamageFunction, StartsAtTheElasticEnergyAtPeak) {
+  // Eq. (13) at D = 0: F = f_t'^2 / (2E) = 9 / 64000.
+  EXPECT_DOUBLE_EQ(damageFunction(kLaw, 1.0), 9.0 / 64000.0);
+}
+
+TEST(DamageFunction, SlopeMatchesFiniteDifferences) {
+  for (double x : {1.0 - 1e-9, 0.9, 0.5, 1e-2, 1e-4, 1e-8}) {
+    const double dx = 1e-6 * x;
+    const double fd = (damageFunction(kLaw, x + dx) - damageFunction(kLaw, x - dx)) / (2 * dx);
+    EXPECT_NEAR(damageFunctionSlope(kLaw, x), fd, 1e-7 * std::abs(fd)) << "x = " << x;
+  }
+}
+
+TEST(DamageFunction, InitialSofteningSlopeOfTheUniaxialLawIsMinusEp) {
+  // MODEL-NOTES: d sigma / d eps_L = -E_p at the peak, with sigma = x E eps, Y = E eps^2 / 2 = F(x).
+  const double dx = 1e-7;
+  const double x = 1.0 - dx;
+  const double epsPeak = test::kFt / test::kE;
+  const double eps = std::sqrt(2.0 * damageFunction(kLaw, x) / test::kE);
+  const double slope = (uniaxialStress(kLaw, x) - test::kFt) / (eps - epsPeak);
+  EXPECT_NEAR(slope, -test::kEp, 1e-4 * test::kEp);
+}
+
+TEST(DamageFunction, IntegritySolveInvertsF) {
+  for (double x : {0.999999, 0.7, 0.1, 1e-3, 1e-6, 1e-9, 1e-13}) {
+    const double y = damageFunction(kLaw, x);
+    EXPECT_NEAR(integrityForDrivingForce(kLaw, y), x, 1e-10 * x) << "x = " << x;
+  }
+}
+
+TEST(DamageFunction, IntegritySolveIsIrreversibleAndBounded) {
+  const double x0 = 0.3;
+  EXPECT_EQ(integrityForDrivingForce(kLaw, 0.0, x0), x0);  // no driving force: no change
+  EXPECT_EQ(integrityForDrivingForce(kLaw, damageFunction(kLaw, 0.5), x0), x0);  // below threshold
+  for (double y : {1e3, 1e8, 1e15, 1e30}) {  // enormous driving forces: x stays in (0, 1), finite
+    const double x = integrityForDrivingForce(kLaw, y);
+    EXPECT_TRUE(std::isfinite(x));
+    EXPECT_GE(x, 0.0);
+    EXPECT_LT(x, 1.0);
+  }
+}
+
+TEST(DamageFunction, PaperConcreteDissipatesTheFractureEnergy) {
+  // Seed README erratum: h int_0^1 F dD = 0.1100 N/mm for the paper's concrete.
+  EXPECT_NEAR(test::kH * dissipationToFailure(kLaw), 0.110, 0.0005 * 0.110);
+}
+
+TEST(DamageFunction, IncrementalDissipationAddsUpToTheTotal) {
+  // Sum of int F dD over a partition of (0, 1] equals the adaptive GSL quadrature of the whole.
+  double sum = 0.0, x = 1.0;
+  while (x > 1e-30) {
+    const double next = x * 0.7;
+    sum += dissipationBetween(kLaw, x, next);
+    x = next;
+  }
+  sum += dissipationBetween(kLaw, x, 0.0);
+  EXPECT_NEAR(sum, dissipationToFailure(kLaw), 1e-9 * sum);
+}
+
+TEST(DamageFunction, OneIncrementToFailureDissipatesTheWholeIntegral) {
+  // A single huge increment (x: 1 -> 1e-15) against the adaptive GSL quadrature of int_0^1 F dD.
+  EXPECT_NEAR(dissipationBetween(kLaw, 1.0, 1e-15), dissipationToFailure(kLaw), 1e-6 * dissipationToFailure(kLaw));
+  EXPECT_NEAR(dissipationBetween(kLaw, 1.0, 0.0), dissipationToFailure(kLaw), 1e-6 * dissipationToFailure(kLaw));
+}
+
+TEST(DamageFunction, FractureEnergyFollowsTheClosedFormWhenEpVanishesFromTheTail) {
+  // Independent check: as n -> 0 the law approaches F = k [(E + Ep)/(E x + Ep)]^2, whose
+  // integral is k (E + Ep) / Ep in closed form (int_0^1 dx/(Ex + Ep)^2 = 1/(Ep (E + Ep))).
+  const DamageLawParams law{1000.0, 2.0, 50.0, 1e-9};
+  const double k = 4.0 / 2000.0;
+  EXPECT_NEAR(dissipationToFailure(law), k * 1050.0 / 50.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace ecm

@@ -1,0 +1,160 @@
+// The enriched two-phase point, Eqs. (1)-(10), against closed forms and the energy identity.
+#include "material/enriched_band.hpp"
+
+#include <gtest/gtest.h>
+
+#include <numbers>
+
+#include "enriched_uniaxial.hpp"
+
+namespace ecm {
+namespace {
+
+using test::EnrichedRun;
+const DamageLawParams kLaw{test::kE, test::kFt, test::kEp, test::kN};
+
+// Drive to complete failure with increments growing geometrically after onset.
+void driveToFailure(EnrichedRun& run, double firstIncrement, double growth, double maxStrain) {
+  const double onset = test::kFt / test::kE;
+  ASSERT_TRUE(run.step(onset));
+  double d = firstIncrement;
+  while (run.state.strain[0] < maxStrain) {
+    ASSERT_TRUE(run.step(d)) << "failed at strain " << run.state.strain[0];
+    d *= growth;
+  }
+}
+
+class EnrichedEnergy : public ::testing::TestWithParam<double> {};
+
+TEST_P(EnrichedEnergy, DissipatesFractureEnergyForAnyEffectiveSize) {
+  // MODEL-NOTES identity: H x (dissipation per unit volume) = h int_0^1 F dD = G_F, whatever H.
+  // nu = 0: the band is in uniaxial stress; nu = 0.2 is checked in the next test.
+  const double bigH = GetParam() * test::kH;
+  EnrichedRun run(test::paperEnriched(0.0), bigH);
+  driveToFailure(run, 1e-8 * (1.0 + test::kH / bigH * 1e3), 1.01, 10.0 * test::kH / bigH + 1e-2);
+  const double gf = test::kH * dissipationToFailure(kLaw);
+  EXPECT_NEAR(bigH * run.dissipated, gf, 0.01 * gf);
+  // ... and the work-based figure agrees in monotonic tension (trapezoid rule: 1%).
+  const double stored = 0.5 * run.stress[0] * run.state.strain[0];
+  EXPECT_NEAR(bigH * (run.work - stored), gf, 0.01 * gf);
+  EXPECT_NEAR(run.peak, test::kFt, 1e-8 * test::kFt);  // 1D peak at onset: f_t'
+}
+
+// H/h from 1.01 to just below the snap-back size h (E + E_p)/E_p, i.e. H/h < 3911.
+INSTANTIATE_TEST_SUITE_P(RatiosHOverh, EnrichedEnergy, ::testing::Values(1.01, 10.0, 100.0, 1000.0, 3900.0));
+
+TEST(EnrichedBand, UniaxialStressWithPoissonFollowsTheFrozenLateralBandClosedForm) {
+  // With nu = 0.2 the band's lateral strain stays at its onset value -nu f_t'/E, so the band is
+  // laterally constrained: its traction follows frozenLateralBand(x) (derived from Eqs. (11)-(12)),
+  // the macro strain is eps = sigma/E + w/H with w = h (eps_L - sigma/E) (MODEL-NOTES pitfall 4),
+  // and the peak exceeds f_t' by up to 1/sqrt(1 - nu^2) (3.062 MPa).
+  const double bigH = 10.0;
+  EnrichedRun run(test::paperEnriched(), bigH);
+  const double eps0 = -test::kNu * test::kFt / test::kE;
+  ASSERT_TRUE(run.step(test::kFt / test::kE));
+  double worst = 0.0, d = 1e-7;
+  for (int i = 0; i < 600; ++i, d *= 1.01) {
+    ASSERT_TRUE(run.step(d));
+    const BandState& b = *run.state.band;
+    const auto exact = test::frozenLateralBand(kLaw, test::kNu, eps0, b.integrity);
+    const double w = test::kH * (exact.bandStrain - exact.stress / test::kE);
+    const double strain = exact.stress / test::kE + w / bigH;
+    worst = std::max({worst, std::abs(run.stress[0] - exact.stress) / test::kFt,
+                      std::abs(run.state.strain[0] - strain) / strain});
+  }
+  EXPECT_LT(worst, 1e-8);
+  EXPECT_GT(run.peak, test::kFt * 1.015);
+  EXPECT_LT(run.peak, test::kFt / std::sqrt(1.0 - test::kNu * test::kNu));
+  // Energy identity still holds (MODEL-NOTES): nothing is removed by the split.
+  double d2 = d;
+  while (run.state.strain[0] < 0.2) {
+    ASSERT_TRUE(run.step(d2));
+    d2 *= 1.02;
+  }
+  const double gf = test::kH * dissipationToFailure(kLaw);
+  EXPECT_NEAR(bigH * run.dissipated, gf, 0.01 * gf);
+}
+
+TEST(EnrichedBand, UniaxialResponseMatchesTheOneDimensionalClosedForm) {
+  // nu = 0: eps = sigma/E + w(sigma)/H with sigma(x) = uniaxialStress(x), eps_L = sigma/(x E).
+  const double bigH = 50.0;
+  EnrichedRun run(test::paperEnriched(0.0), bigH);
+  ASSERT_TRUE(run.step(test::kFt / test::kE));
+  double d = 1e-8;
+  for (int i = 0; i < 800; ++i, d *= 1.01) {
+    ASSERT_TRUE(run.step(d));
+    const double x = run.state.band->integrity;
+    const double sigma = uniaxialStress(kLaw, x);
+    const double w = test::kH * (sigma / (x * test::kE) - sigma / test::kE);
+    EXPECT_NEAR(run.stress[0], sigma, 1e-9 * test::kFt);
+    EXPECT_NEAR(run.state.strain[0], sigma / test::kE + w / bigH, 1e-9 * run.state.strain[0]);
+  }
+}
+
+TEST(EnrichedBand, TractionIsContinuousAcrossTheBandAtConvergence) {
+  // Eq. (6): |(sigma - sigma_L) n| <= 1e-9 f_t' after every converged increment, on a path
+  // of tension, then shear, then partial unloading.
+  EnrichedBand model(test::paperEnriched());
+  EnrichedState s;
+  const auto size = EffectiveSize::fixed(2.5);
+  std::vector<Voigt> path;
+  for (int i = 0; i < 30; ++i) path.emplace_back(1e-5, 0.0, 0.0);
+  for (int i = 0; i < 30; ++i) path.emplace_back(0.0, 0.0, 2e-5);
+  for (int i = 0; i < 10; ++i) path.emplace_back(-1e-5, 0.0, -1e-5);
+  for (const Voigt& d : path) {
+    const UpdateResult r = model.update(s, d, size);
+    ASSERT_TRUE(r.converged()) << toString(r.status);
+    if (!s.band) continue;
+    const BandEquilibrium eq = model.equilibrium(*s.band, s.strain, s.band->jump, false);
+    EXPECT_LE(eq.residual.norm(), 1e-9 * test::kFt);
+    EXPECT_TRUE(eq.stress.isApprox(r.stress, 1e-12));
+  }
+  ASSERT_TRUE(s.band);
+  EXPECT_GT(s.band->damage(), 0.5);
+}
+
+TEST(EnrichedBand, RotatedPathGivesRotatedStressAndCrackNormal) {
+  // Objectivity: the model is isotropic until onset and the crack normal is a principal
+  // direction, so rotating the strain path by theta rotates stress and normal by theta.
+  EnrichedBand model(test::paperEnriched());
+  const auto size = EffectiveSize::fixed(5.0);
+  for (double theta : {0.3, 1.0, std::numbers::pi / 2, 2.5}) {
+    EnrichedState a, b;
+    for (int i = 0; i < 60; ++i) {
+      const Voigt d = i < 40 ? Voigt(4e-6, -1e-6, 1e-6) : Voigt(1e-6, 2e-6, 6e-6);
+      const UpdateResult ra = model.update(a, d, size);
+      const UpdateResult rb = model.update(b, rotateStrain(d, theta), size);
+      ASSERT_TRUE(ra.converged() && rb.converged());
+      EXPECT_LE((rotateStress(ra.stress, theta) - rb.stress).norm(), 1e-9 * test::kFt) << "theta " << theta;
+    }
+    ASSERT_TRUE(a.band && b.band);
+    const Vec2 rotated = Eigen::Rotation2Dd(theta) * a.band->crackNormal;
+    EXPECT_NEAR(std::abs(rotated.dot(b.band->crackNormal)), 1.0, 1e-12);
+    EXPECT_NEAR(a.band->damage(), b.band->damage(), 1e-12);
+  }
+}
+
+TEST(EnrichedBand, OnsetIsSplitAtTheExactPoint) {
+  // MODEL-NOTES pitfall 1: one big increment through onset gives the same state as stopping
+  // exactly at onset and continuing (the onset strain is the root of Eq. (12) with D = 0).
+  EnrichedBand model(test::paperEnriched(0.0));
+  const auto size = EffectiveSize::fixed(10.0);
+  const Voigt direction(1.0, 0.0, 0.3);
+  EnrichedState once, twice;
+  ASSERT_TRUE(model.update(once, 3e-4 * direction, size).converged());
+  // Uniaxial-strain-with-shear onset: solve Y(alpha) = F(0) in closed form via bisection here.
+  double lo = 0.0, hi = 3e-4;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (model.intactDrivingForce(mid * direction) < model.bandLaw().onsetDrivingForce() ? lo : hi) = mid;
+  }
+  ASSERT_TRUE(model.update(twice, hi * direction, size).converged());
+  ASSERT_TRUE(model.update(twice, (3e-4 - hi) * direction, size).converged());
+  ASSERT_TRUE(once.band && twice.band);
+  EXPECT_LE((once.band->onsetStrain - twice.band->onsetStrain).norm(), 1e-15);
+  EXPECT_NEAR(once.band->integrity, twice.band->integrity, 1e-9);
+  EXPECT_LE((once.band->crackNormal - twice.band->crackNormal).norm(), 1e-9);
+}
+
+}  // namespace
+}  // namespace ecm

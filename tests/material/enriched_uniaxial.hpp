@@ -1,0 +1,60 @@
+#pragma once
+// Test helper: an enriched point of effective size H driven in uniaxial stress, and the exact
+// band response with the band's lateral strain frozen at onset (MODEL-NOTES: band strain changes
+// only through the jump), parameterised by the band integrity x.
+#include <cmath>
+#include <vector>
+
+#include "material/enriched_band.hpp"
+#include "paper_concrete.hpp"
+#include "uniaxial.hpp"
+
+namespace ecm::test {
+
+struct EnrichedRun {
+  EnrichedBand model;
+  EnrichedState state;
+  EffectiveSize size;
+  double dissipated = 0.0;
+  double work = 0.0;  // int sigma_xx d eps_xx (trapezoid)
+  double peak = 0.0;
+  Voigt stress = Voigt::Zero();
+
+  EnrichedRun(const EnrichedParams& p, double effectiveSize) : model(p), size(EffectiveSize::fixed(effectiveSize)) {}
+
+  TrialUpdate trial() {
+    return [this](const Voigt& d, bool commit) {
+      EnrichedState s = state;
+      const UpdateResult r = model.update(s, d, size);
+      if (commit) {
+        state = s;
+        dissipated += r.dissipation;
+      }
+      return r;
+    };
+  }
+  // One uniaxial-stress increment of eps_xx; false if the update failed (e.g. snap-back).
+  bool step(double dExx, double tol = 1e-11) {
+    const auto r = uniaxialStressStep(trial(), dExx, model.stiffness(), tol);
+    if (!r) return false;
+    work += 0.5 * (stress[0] + r->stress[0]) * dExx;
+    stress = r->stress;
+    peak = std::max(peak, stress[0]);
+    return true;
+  }
+};
+
+// Exact band response in plane stress with the lateral band strain eps0 frozen (both effective
+// principal stresses non-negative, so Y = eps : a : eps / 2 = F(x), Eq. (12)).
+struct FrozenLateralBand {
+  double stress;      // sigma_nn = x (a eps_L)_nn
+  double bandStrain;  // eps_L,nn
+};
+inline FrozenLateralBand frozenLateralBand(const DamageLawParams& law, double nu, double eps0, double x) {
+  const double ePrime = law.youngsModulus / (1.0 - nu * nu);
+  const double f = damageFunction(law, x);
+  const double e = -nu * eps0 + std::sqrt(nu * nu * eps0 * eps0 - eps0 * eps0 + 2.0 * f / ePrime);
+  return {x * ePrime * (e + nu * eps0), e};
+}
+
+}  // namespace ecm::test

@@ -1,0 +1,62 @@
+// Out-of-range parameters are rejected naming the parameter, its value and the allowed range.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "material/material.hpp"
+#include "paper_concrete.hpp"
+
+namespace ecm {
+namespace {
+
+MaterialParams concrete() {
+  MaterialParams p;
+  p.model = ModelKind::Enriched;
+  p.elastic = {test::kE, test::kNu, Hypothesis::PlaneStress};
+  p.tensileStrength = test::kFt;
+  p.softeningModulus = test::kEp;
+  p.softeningExponent = test::kN;
+  p.bandWidth = test::kH;
+  return p;
+}
+
+void expectRejected(MaterialParams p, const std::string& name, const std::string& range) {
+  try {
+    Material m(p);
+    FAIL() << "accepted a bad " << name;
+  } catch (const ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(range), std::string::npos) << e.what();
+  }
+}
+
+TEST(Parameters, RejectsEachOutOfRangeValue) {
+  MaterialParams p = concrete();
+  p.elastic.youngsModulus = 0.0;
+  expectRejected(p, "youngs_modulus", "(0,");
+  p = concrete(), p.elastic.poissonRatio = 0.5;
+  expectRejected(p, "poisson_ratio", "(-1, 0.5)");
+  p = concrete(), p.tensileStrength = -1.0;
+  expectRejected(p, "tensile_strength", "(0,");
+  p = concrete(), p.softeningModulus = 0.0;
+  expectRejected(p, "softening_modulus", "(0,");
+  p = concrete(), p.softeningExponent = 0.5;  // int F dD diverges for n >= 0.5
+  expectRejected(p, "softening_exponent", "(0, 0.5)");
+  p = concrete(), p.bandWidth = 0.0;
+  expectRejected(p, "band_width", "(0,");
+  p = concrete(), p.tensileStrength = std::nan("");
+  expectRejected(p, "tensile_strength", "nan");
+  p = concrete(), p.elastic.youngsModulus = INFINITY;
+  expectRejected(p, "youngs_modulus", "inf");
+}
+
+TEST(Parameters, EffectiveSizeMustExceedTheBandWidth) {
+  // Eq. (1): f = h / H must lie in (0, 1).
+  const Material m(concrete());
+  MaterialPoint point;
+  EXPECT_THROW(m.update(point, Voigt(1e-3, 0.0, 0.0), EffectiveSize::fixed(test::kH)), ParameterError);
+  EXPECT_FALSE(point.band);
+}
+
+}  // namespace
+}  // namespace ecm

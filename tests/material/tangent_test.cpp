@@ -1,0 +1,94 @@
+// Consistent tangents against central finite differences (MTest's
+// CompareToNumericalTangentOperator): relative error <= 1e-6 in every state the issue lists.
+#include <gtest/gtest.h>
+
+#include <functional>
+
+#include "material/material.hpp"
+#include "paper_concrete.hpp"
+
+namespace ecm {
+namespace {
+
+// Runs `increment` from a copy of the committed point; returns the stress and tangent.
+using Probe = std::function<UpdateResult(const Voigt& increment)>;
+
+double tangentError(const Probe& probe, const Voigt& increment, double delta) {
+  const UpdateResult r = probe(increment);
+  EXPECT_TRUE(r.converged());
+  Tangent fd;
+  for (int j = 0; j < 3; ++j) {
+    Voigt e = Voigt::Zero();
+    e[j] = delta;
+    const UpdateResult plus = probe(increment + e), minus = probe(increment - e);
+    EXPECT_TRUE(plus.converged() && minus.converged());
+    fd.col(j) = (plus.stress - minus.stress) / (2.0 * delta);
+  }
+  return (r.tangent - fd).cwiseAbs().maxCoeff() / r.tangent.cwiseAbs().maxCoeff();
+}
+
+struct Point {
+  Material material;
+  MaterialPoint point;
+  EffectiveSize size = EffectiveSize::fixed(2.5);
+  explicit Point(const MaterialParams& p) : material(p) {}
+  void load(const Voigt& increment, int steps) {
+    for (int i = 0; i < steps; ++i) ASSERT_TRUE(material.update(point, increment / steps, size).converged());
+  }
+  Probe probe() const {
+    return [this](const Voigt& d) {
+      MaterialPoint copy = point;
+      return material.update(copy, d, size);
+    };
+  }
+};
+
+MaterialParams params(ModelKind kind, Hypothesis hyp = Hypothesis::PlaneStress) {
+  MaterialParams p;
+  p.model = kind;
+  p.elastic = {test::kE, test::kNu, hyp};
+  p.tensileStrength = test::kFt;
+  p.softeningModulus = test::kEp;
+  p.softeningExponent = test::kN;
+  p.bandWidth = test::kH;
+  return p;
+}
+
+constexpr double kTol = 1e-6;
+constexpr double kDelta = 1e-9;  // strain perturbation; increments below are >= 1e-6
+
+class TangentTest : public ::testing::TestWithParam<std::tuple<ModelKind, Hypothesis>> {};
+
+TEST_P(TangentTest, MatchesFiniteDifferencesInEveryRegime) {
+  const auto [kind, hyp] = GetParam();
+  Point p(params(kind, hyp));
+  const Voigt tension(1.0, 0.1, 0.2);  // principal axes off the grid axes
+  // elastic loading
+  EXPECT_LT(tangentError(p.probe(), 5e-5 * tension, kDelta), kTol) << "elastic loading";
+  if (kind == ModelKind::LinearElastic) return;
+  // softening (well past onset)
+  p.load(1.2e-4 * tension, 20);
+  EXPECT_LT(tangentError(p.probe(), 2e-6 * tension, kDelta), kTol) << "softening";
+  // unloading (secant)
+  p.load(1e-5 * tension, 5);
+  EXPECT_LT(tangentError(p.probe(), -2e-5 * tension, kDelta), kTol) << "unloading";
+  // reloading, still inside the envelope
+  p.load(-4e-5 * tension, 5);
+  EXPECT_LT(tangentError(p.probe(), 2e-5 * tension, kDelta), kTol) << "reloading";
+  // a cracked point under shear (mixed mode), damage growing
+  p.load(3e-5 * tension, 5);
+  p.load(Voigt(0.0, 0.0, 2e-5), 5);
+  EXPECT_LT(tangentError(p.probe(), Voigt(0.0, 0.0, 3e-6), kDelta), kTol) << "shear";
+}
+
+INSTANTIATE_TEST_SUITE_P(AllModels, TangentTest,
+                         ::testing::Combine(::testing::Values(ModelKind::LinearElastic, ModelKind::SmearedCrack,
+                                                              ModelKind::Enriched),
+                                            ::testing::Values(Hypothesis::PlaneStress, Hypothesis::PlaneStrain)),
+                         [](const auto& info) {
+                           return std::string(toString(std::get<0>(info.param))) +
+                                  (std::get<1>(info.param) == Hypothesis::PlaneStress ? "_plane_stress" : "_plane_strain");
+                         });
+
+}  // namespace
+}  // namespace ecm
