@@ -132,8 +132,8 @@ UpdateResult EnrichedBand::updateCracked(BandState& b, Voigt& strain, const Voig
     res.status = UpdateStatus::NotConverged;
     return res;
   }
-  if (eq.band.loading && !positiveDefinite(eq.jacobian)) {
-    res.status = UpdateStatus::SnapBack;  // a solution, but on a branch strain control cannot reach
+  if (it > 0 && eq.band.loading && !positiveDefinite(eq.jacobian)) {
+    res.status = UpdateStatus::SnapBack;  // Newton drifted onto a branch strain control cannot reach
     return res;
   }
   res.tangent = consistentTangent(b, eq);

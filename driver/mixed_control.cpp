@@ -1,0 +1,96 @@
+#include "driver/mixed_control.hpp"
+
+#include <cmath>
+#include <vector>
+
+namespace ecm {
+
+namespace {
+
+// One attempt without sub-stepping.
+StepOutcome solveIncrement(const Material& material, const MaterialPoint& start, MaterialPoint& end,
+                           const Voigt& currentStress, const MixedTarget& t, const EffectiveSize& size,
+                           const MixedControlSettings& s) {
+  std::vector<int> free;
+  for (int i = 0; i < 3; ++i)
+    if (t.control[i] == Control::Stress) free.push_back(i);
+  const int m = static_cast<int>(free.size());
+  StepOutcome out;
+  Voigt d = t.strainIncrement;
+  // Elastic predictor for the stress-controlled components: a_ss d_s = dsigma_s - a_sk d_k.
+  const Tangent& a = material.stiffness();
+  const auto solveFree = [&](const Tangent& k, const Voigt& rhs) {
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3> kk(m, m);
+    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1> r(m);
+    for (int i = 0; i < m; ++i) {
+      r[i] = rhs[free[i]];
+      for (int j = 0; j < m; ++j) kk(i, j) = k(free[i], free[j]);
+    }
+    return Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>(kk.partialPivLu().solve(r));
+  };
+  if (m > 0) {
+    for (int i : free) d[i] = 0.0;
+    const Voigt rhs = t.stress - currentStress - a * d;
+    const auto x = solveFree(a, rhs);
+    for (int i = 0; i < m; ++i) d[free[i]] = x[i];
+  }
+  bool elasticFallback = false;
+  double previous = INFINITY;
+  for (int it = 0; it <= s.maxIterations; ++it) {
+    end = start;
+    out.result = material.update(end, d, size);
+    out.strainIncrement = d;
+    out.iterations = it;
+    if (!out.result.converged()) return out;
+    Voigt res = Voigt::Zero();
+    for (int i : free) res[i] = out.result.stress[i] - t.stress[i];
+    out.controlResidual = res.norm();
+    if (out.controlResidual <= s.tolerance) {
+      out.dissipation = out.result.dissipation;
+      return out;
+    }
+    // Newton with the consistent tangent; the elastic stiffness once it stops contracting.
+    elasticFallback = elasticFallback || out.controlResidual > 0.5 * previous;
+    previous = out.controlResidual;
+    const auto x = solveFree(elasticFallback ? a : out.result.tangent, res);
+    for (int i = 0; i < m; ++i) d[free[i]] -= x[i];
+  }
+  out.result.status = UpdateStatus::NotConverged;
+  return out;
+}
+
+StepOutcome substepped(const Material& material, MaterialPoint& point, const Voigt& currentStress,
+                       const MixedTarget& t, const EffectiveSize& size, const MixedControlSettings& s, int level) {
+  MaterialPoint end;
+  StepOutcome out = solveIncrement(material, point, end, currentStress, t, size, s);
+  if (out.converged()) {
+    point = end;
+    return out;
+  }
+  // A snap-back is a property of the path, not of the step size: do not sub-step it.
+  if (out.result.status == UpdateStatus::SnapBack || level >= s.maxSubstepLevels) return out;
+  MixedTarget half = t;
+  half.strainIncrement = 0.5 * t.strainIncrement;
+  half.stress = 0.5 * (currentStress + t.stress);
+  MaterialPoint trial = point;
+  StepOutcome first = substepped(material, trial, currentStress, half, size, s, level + 1);
+  if (!first.converged()) return first;
+  StepOutcome second = substepped(material, trial, first.result.stress, {t.control, half.strainIncrement, t.stress}, size,
+                                  s, level + 1);
+  if (!second.converged()) return second;
+  point = trial;
+  second.strainIncrement += first.strainIncrement;
+  second.dissipation += first.dissipation;
+  second.iterations += first.iterations;
+  second.substeps = first.substeps + second.substeps;
+  return second;
+}
+
+}  // namespace
+
+StepOutcome mixedControlStep(const Material& material, MaterialPoint& point, const Voigt& currentStress,
+                             const MixedTarget& target, const EffectiveSize& size, const MixedControlSettings& s) {
+  return substepped(material, point, currentStress, target, size, s, 0);
+}
+
+}  // namespace ecm

@@ -1,0 +1,39 @@
+#pragma once
+// One increment of a point under mixed strain/stress control: the strain-controlled components
+// get their increment, the stress-controlled ones are found by Newton with the material's
+// consistent tangent (residual <= tolerance), with the elastic stiffness as a fallback where
+// the tangent jumps (onset). A material update that fails to converge is sub-stepped.
+#include <array>
+
+#include "driver/load_path.hpp"
+#include "material/material.hpp"
+
+namespace ecm {
+
+struct MixedTarget {
+  std::array<Control, 3> control{Control::Strain, Control::Strain, Control::Strain};
+  Voigt strainIncrement = Voigt::Zero();  // used for strain-controlled components
+  Voigt stress = Voigt::Zero();           // end-of-increment stress for stress-controlled ones
+};
+
+struct StepOutcome {
+  UpdateResult result;       // stress, tangent, status of the final (sub)step
+  Voigt strainIncrement = Voigt::Zero();  // the full increment applied (all components)
+  double dissipation = 0.0;  // sum over sub-steps
+  double controlResidual = 0.0;  // |sigma_s - target_s| (MPa)
+  int iterations = 0;        // mixed-control Newton iterations, summed over sub-steps
+  int substeps = 1;
+  bool converged() const { return result.converged(); }
+};
+
+struct MixedControlSettings {
+  double tolerance = 1e-8;   // on |sigma_s - target_s|, MPa (callers use 1e-8 f_t')
+  int maxIterations = 200;
+  int maxSubstepLevels = 10; // up to 2^10 sub-steps of a failing increment
+};
+
+// Commits the increment to `point` and returns its outcome; on failure `point` is unchanged.
+StepOutcome mixedControlStep(const Material& material, MaterialPoint& point, const Voigt& currentStress,
+                             const MixedTarget& target, const EffectiveSize& size, const MixedControlSettings& s);
+
+}  // namespace ecm

@@ -1,0 +1,283 @@
+#include "driver/point_driver.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "driver/opening_control.hpp"
+
+namespace ecm {
+
+namespace {
+
+// n . e . n for a Voigt strain (engineering shear).
+double normalComponent(const Voigt& e, const Vec2& n) {
+  return n[0] * n[0] * e[0] + n[1] * n[1] * e[1] + n[0] * n[1] * e[2];
+}
+
+double firstPrincipalStrain(const Voigt& e) { return principalStresses(Voigt(e[0], e[1], 0.5 * e[2])).first; }
+
+class Runner {
+ public:
+  Runner(const PointScene& s, const RowObserver& o)
+      : scene_(s), observe_(o), material_(s.material), size_(EffectiveSize::fixed(s.effectiveSize)) {
+    const double ft = s.material.tensileStrength > 0.0 ? s.material.tensileStrength : 1.0;
+    settings_.tolerance = s.relativeTolerance * ft;
+    total_ = totalIncrements(s);
+  }
+
+  PointRun run() {
+    record(0, 0, StepOutcome{}, false, false);
+    for (int k = 0; k < static_cast<int>(scene_.path.size()); ++k) {
+      const Segment& seg = scene_.path[k];
+      const bool ok = seg.openingControl ? openingSegment(k, seg) : strainSegment(k, seg);
+      if (!ok) return std::move(run_);
+    }
+    run_.completed = true;
+    return std::move(run_);
+  }
+
+ private:
+  bool strainSegment(int k, const Segment& seg) {
+    const Voigt strain0 = point_.strain, stress0 = stress_;
+    for (int i = 1; i <= seg.increments; ++i) {
+      const double s = static_cast<double>(i) / seg.increments;
+      MixedTarget t;
+      t.control = seg.control;
+      for (int c = 0; c < 3; ++c) {
+        if (seg.control[c] == Control::Strain) t.strainIncrement[c] = strain0[c] + s * (seg.target[c] - strain0[c]) - point_.strain[c];
+        else t.stress[c] = stress0[c] + s * (seg.target[c] - stress0[c]);
+      }
+      const StepOutcome out = mixedControlStep(material_, point_, stress_, t, size_, settings_);
+      if (out.result.status == UpdateStatus::SnapBack) {
+        if (!snapBack(k, t)) return false;
+        continue;
+      }
+      if (!out.converged()) return fail(out, k, i);
+      record(k, ++increment_, out, false, false);
+    }
+    return true;
+  }
+
+  // The point has no equilibrium branch for this increment under strain control.
+  bool snapBack(int k, const MixedTarget& t) {
+    SnapBackReport& r = run_.snapBack;
+    const double before = principalStresses(stress_).first;
+    if (!r.detected) {
+      r.detected = true;
+      r.increment = increment_ + 1;
+      r.strain = point_.strain;
+      r.stressBefore = before;
+    }
+    const EnrichedBand* model = material_.enriched();
+    if (scene_.onSnapBack == OnSnapBack::Stop || !model) {
+      std::ostringstream msg;
+      msg << "snap-back at increment " << increment_ + 1 << " (first principal stress " << before
+          << " MPa): no equilibrium branch continues under strain control; use opening control to trace it";
+      run_.failure = msg.str();
+      return false;
+    }
+    // Jump: follow the branch under opening control until the controlled strain reaches the
+    // increment's target again, then land there exactly (secant on the normal jump).
+    OpeningTarget o;
+    o.control = t.control;
+    o.direction = t.strainIncrement;
+    o.stress = t.stress;
+    if (!point_.band) {  // onset inside the failing increment: stop exactly at onset first
+      const Voigt target = point_.strain + t.strainIncrement;
+      if (!stepToOnset(k, o)) return false;
+      o.direction = target - point_.strain;
+      for (int c = 0; c < 3; ++c)
+        if (t.control[c] == Control::Stress) o.direction[c] = 0.0;
+    }
+    const double h = model->bandWidth();
+    double lambda = 0.0, dJump = 1e-4 * h;
+    for (int guard = 0; guard < 100000; ++guard) {
+      MaterialPoint trial = point_;
+      o.normalJump = point_.band->normalJump() + dJump;
+      const OpeningOutcome out = openingControlStep(*model, trial, o, settings_.tolerance);
+      if (!out.step.converged()) {
+        dJump *= 0.5;
+        if (dJump < 1e-14 * h) return fail(out.step, k, -1);
+        continue;
+      }
+      if (lambda + out.loadFactor < 1.0) {
+        lambda += out.loadFactor;
+        point_ = trial;
+        stress_ = out.step.result.stress;
+        work_ += 0.5 * (stress_ + out.step.result.stress).dot(out.step.strainIncrement);
+        dissipation_ += out.step.dissipation;
+        dJump = std::min(dJump * 1.5, 1e-2 * h + dJump);
+        continue;
+      }
+      // Land on lambda = 1 within this step: secant on the jump increment.
+      double lo = 0.0, hi = dJump, flo = lambda - 1.0, fhi = lambda + out.loadFactor - 1.0;
+      OpeningOutcome best = out;
+      MaterialPoint landed = trial;
+      for (int it = 0; it < 100 && std::abs(flo - fhi) > 0.0; ++it) {
+        const double mid = std::clamp(hi - fhi * (hi - lo) / (fhi - flo), lo + 1e-3 * (hi - lo), hi - 1e-3 * (hi - lo));
+        MaterialPoint m = point_;
+        o.normalJump = point_.band->normalJump() + mid;
+        const OpeningOutcome mo = openingControlStep(*model, m, o, settings_.tolerance);
+        if (!mo.step.converged()) break;
+        const double fm = lambda + mo.loadFactor - 1.0;
+        best = mo, landed = m;
+        if (std::abs(fm) < 1e-12) break;
+        (fm < 0.0 ? (lo = mid, flo = fm) : (hi = mid, fhi = fm));
+      }
+      const Voigt oldStress = stress_;
+      point_ = landed;
+      stress_ = best.step.result.stress;
+      work_ += 0.5 * (oldStress + stress_).dot(best.step.strainIncrement);
+      dissipation_ += best.step.dissipation;
+      r.stressAfter = principalStresses(stress_).first;
+      r.jumped = true;
+      record(k, ++increment_, best.step, true, true, false);
+      return true;
+    }
+    run_.failure = "snap-back: the stable branch was not reached";
+    return false;
+  }
+
+  bool openingSegment(int k, const Segment& seg) {
+    const EnrichedBand* model = material_.enriched();
+    OpeningTarget o;
+    o.control = seg.control;
+    o.stress = seg.target;
+    for (int c = 0; c < 3; ++c) o.direction[c] = seg.control[c] == Control::Strain ? seg.target[c] : 0.0;
+    if (!point_.band && !stepToOnset(k, o)) return false;
+    const double jump0 = point_.band->normalJump();
+    for (int i = 1; i <= seg.increments; ++i) {
+      o.normalJump = jump0 + (seg.openingTarget - jump0) * i / seg.increments;
+      MaterialPoint trial = point_;
+      const OpeningOutcome out = openingControlStep(*model, trial, o, settings_.tolerance);
+      if (!out.step.converged()) return fail(out.step, k, i);
+      point_ = trial;
+      record(k, ++increment_, out.step, true, false);
+    }
+    return true;
+  }
+
+  // Elastic, so linear: find the exact onset along the segment's direction and stop there.
+  bool stepToOnset(int k, const OpeningTarget& o) {
+    const EnrichedBand* model = material_.enriched();
+    MixedTarget t;
+    t.control = o.control;
+    t.strainIncrement = o.direction;
+    t.stress = o.stress;
+    // Full strain increment of the elastic mixed-control step along the direction.
+    Voigt d = o.direction;
+    std::vector<int> free;
+    for (int c = 0; c < 3; ++c)
+      if (o.control[c] == Control::Stress) free.push_back(c), d[c] = 0.0;
+    const Tangent& a = material_.stiffness();
+    for (int pass = 0; pass < 2 && !free.empty(); ++pass)  // exact for up to 3 free components
+      for (int c : free) d[c] += (o.stress[c] - stress_[c] - (a * d)[c]) / a(c, c);
+    Voigt unit = d;
+    for (int it = 0; it < 50 && !free.empty(); ++it) {  // Gauss-Seidel on the free block
+      for (int c : free) unit[c] += (o.stress[c] - stress_[c] - (a * unit)[c]) / a(c, c);
+    }
+    double scale = 1.0;
+    std::optional<double> alpha;
+    for (int it = 0; it < 200 && !(alpha = model->onsetFraction(point_.strain, scale * unit)); ++it) scale *= 2.0;
+    if (!alpha) {
+      run_.failure = "opening control: the path never reaches the onset of cracking (compression?)";
+      return false;
+    }
+    StepOutcome out;
+    const Voigt step = *alpha * scale * unit * (1.0 + 1e-13);
+    out.result = material_.update(point_, step, size_);
+    out.strainIncrement = step;
+    out.dissipation = out.result.dissipation;
+    if (!out.converged() || !point_.band) return fail(out, k, 0);
+    record(k, ++increment_, out, false, false);
+    return true;
+  }
+
+  bool fail(const StepOutcome& out, int k, int i) {
+    std::ostringstream msg;
+    msg << "increment " << increment_ + 1 << " (segment " << k + 1 << ", step " << i << "): material update "
+        << toString(out.result.status) << ", traction residual " << out.result.residual << " MPa after "
+        << out.result.iterations << " iterations, stress-control residual " << out.controlResidual << " MPa";
+    run_.failure = msg.str();
+    return false;
+  }
+
+  void record(int k, int inc, const StepOutcome& out, bool opening, bool jump, bool accumulate = true) {
+    if (accumulate && inc > 0) {
+      work_ += 0.5 * (stress_ + out.result.stress).dot(out.strainIncrement);
+      dissipation_ += out.dissipation;
+      stress_ = out.result.stress;
+    }
+    HistoryRow r;
+    r.increment = inc;
+    r.segment = k + 1;
+    r.strain = point_.strain;
+    r.stress = stress_;
+    r.damage = point_.damage();
+    r.integrity = point_.band ? point_.band->integrity : point_.integrity;
+    r.work = work_;
+    r.dissipation = dissipation_;
+    r.iterations = out.iterations;
+    r.substeps = out.substeps;
+    r.openingControl = opening;
+    r.snapBackJump = jump;
+    const Tangent& c = compliance_;
+    if (point_.band) {
+      const BandState& b = *point_.band;
+      r.crackNormal = b.crackNormal;
+      r.normalJump = b.normalJump();
+      r.slidingJump = b.slidingDirection().dot(b.jump);
+      r.volumeFraction = b.volumeFraction;
+      const Voigt bandStrain = b.onsetStrain + jumpToStrain(b.crackNormal) * b.jump / material_.enriched()->bandWidth();
+      r.opening = material_.enriched()->bandWidth() * normalComponent(bandStrain - c * stress_, b.crackNormal);
+    } else if (material_.smeared() && point_.integrity < 1.0) {
+      const Vec2 n = principalStresses(stress_).firstDirection;
+      r.crackNormal = n;
+      r.opening = scene_.effectiveSize * normalComponent(point_.strain - c * stress_, n);
+    }
+    run_.history.push_back(r);
+    if (observe_) observe_(r, inc, total_);
+  }
+
+  const PointScene& scene_;
+  const RowObserver& observe_;
+  Material material_;
+  Tangent compliance_ = elasticCompliance(scene_.material.elastic);
+  EffectiveSize size_;
+  MixedControlSettings settings_;
+  MaterialPoint point_;
+  Voigt stress_ = Voigt::Zero();
+  double work_ = 0.0, dissipation_ = 0.0;
+  int increment_ = 0, total_ = 0;
+  PointRun run_;
+};
+
+}  // namespace
+
+int totalIncrements(const PointScene& scene) {
+  int n = 0;
+  for (const Segment& s : scene.path) n += s.increments;
+  return n;
+}
+
+PointRun runPoint(const PointScene& scene, const RowObserver& observe) { return Runner(scene, observe).run(); }
+
+PointSummary summarise(const PointScene& scene, const PointRun& run) {
+  PointSummary s;
+  s.effectiveSize = scene.effectiveSize;
+  for (const HistoryRow& r : run.history) {
+    const double p = principalStresses(r.stress).first;
+    if (p > s.peakStress) {
+      s.peakStress = p;
+      s.strainAtPeak = firstPrincipalStrain(r.strain);
+    }
+  }
+  if (!run.history.empty()) {
+    s.dissipation = run.history.back().dissipation;
+    s.finalWork = run.history.back().work;
+  }
+  s.energyPerArea = s.effectiveSize * s.dissipation;
+  return s;
+}
+
+}  // namespace ecm

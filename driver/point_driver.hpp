@@ -1,0 +1,79 @@
+#pragma once
+// The single-point strain-path driver: runs a load path on one material point and records
+// every increment. Strain control, mixed strain/stress control, opening control (which traces
+// snap-back branches), sub-stepping, and snap-back detection under strain control.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "driver/load_path.hpp"
+#include "driver/mixed_control.hpp"
+
+namespace ecm {
+
+enum class OnSnapBack {
+  Stop,  // report and stop the run
+  Jump,  // report, find the stable state at the same strain (opening control), and go on
+};
+
+struct PointScene {
+  std::string name;
+  MaterialParams material;
+  double effectiveSize = 0.0;  // H (mm)
+  std::vector<Segment> path;
+  OnSnapBack onSnapBack = OnSnapBack::Jump;
+  double relativeTolerance = 1e-8;  // stress control residual <= this * f_t' (or * 1 MPa if elastic)
+};
+
+struct HistoryRow {
+  int increment = 0;
+  int segment = 0;
+  Voigt strain = Voigt::Zero();
+  Voigt stress = Voigt::Zero();
+  double damage = 0.0;
+  double integrity = 1.0;    // 1 - D, kept separately (precision near D = 1, MODEL-NOTES pitfall 3)
+  double normalJump = 0.0;   // [u].n (mm), enriched only
+  double slidingJump = 0.0;  // [u].t (mm)
+  double opening = 0.0;      // inelastic opening w (mm): h (eps_L - C sigma)_nn, or H (eps - C sigma)_nn smeared
+  Vec2 crackNormal = Vec2::Zero();
+  double volumeFraction = 0.0;
+  double work = 0.0;         // int sigma : d eps per unit volume (MPa)
+  double dissipation = 0.0;  // accumulated, per unit volume (MPa)
+  int iterations = 0;
+  int substeps = 1;
+  bool openingControl = false;
+  bool snapBackJump = false;  // this row is the stable state reached after a snap-back
+};
+
+struct SnapBackReport {
+  bool detected = false;
+  int increment = -1;          // first increment that had no equilibrium branch under strain control
+  Voigt strain = Voigt::Zero();// strain before that increment
+  double stressBefore = 0.0;   // first principal stress before it (MPa)
+  double stressAfter = 0.0;    // on the stable branch at the increment's target strain (if jumped)
+  bool jumped = false;
+};
+
+struct PointRun {
+  std::vector<HistoryRow> history;
+  SnapBackReport snapBack;
+  bool completed = false;
+  std::string failure;  // why the run stopped early
+};
+
+struct PointSummary {
+  double peakStress = 0.0;      // max first principal stress (MPa)
+  double strainAtPeak = 0.0;    // first principal strain at the peak
+  double dissipation = 0.0;     // per unit volume (MPa)
+  double effectiveSize = 0.0;   // H
+  double energyPerArea = 0.0;   // H x dissipation (N/mm)
+  double finalWork = 0.0;
+};
+
+using RowObserver = std::function<void(const HistoryRow&, int done, int total)>;
+
+PointRun runPoint(const PointScene& scene, const RowObserver& observe = {});
+PointSummary summarise(const PointScene& scene, const PointRun& run);
+int totalIncrements(const PointScene& scene);
+
+}  // namespace ecm
