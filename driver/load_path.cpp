@@ -57,9 +57,26 @@ std::vector<Segment> presetSegments(const PresetPath& p, double nu) {
     Segment open = path.front();
     open.openingControl = true;
     open.openingTarget = p.opening;
+    open.firstOpeningIncrement = p.firstOpeningIncrement;
     path.push_back(open);
   }
   return path;
+}
+
+double openingAt(const Segment& s, double start, int k) {
+  const double total = s.openingTarget - start;
+  const int n = s.increments;
+  const double first = s.firstOpeningIncrement;
+  if (!(first > 0.0) || first * n >= total) return start + total * k / n;
+  // ratio q > 1 with first (q^n - 1)/(q - 1) = total, by bisection on log q
+  double lo = 0.0, hi = 50.0 / n;
+  const auto sum = [&](double logq) { return first * std::expm1(n * logq) / std::expm1(logq); };
+  for (int it = 0; it < 200; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (sum(mid) < total ? lo : hi) = mid;
+  }
+  const double logq = 0.5 * (lo + hi);
+  return k == n ? s.openingTarget : start + first * std::expm1(k * logq) / std::expm1(logq);
 }
 
 }  // namespace ecm

@@ -20,6 +20,7 @@ struct Segment {
   // components then only give the direction of the strain path (their targets are ratios).
   bool openingControl = false;
   double openingTarget = 0.0;
+  double firstOpeningIncrement = 0.0;  // > 0: geometric spacing starting with this increment (mm)
   bool hasStressControl() const {
     return control[0] == Control::Stress || control[1] == Control::Stress || control[2] == Control::Stress;
   }
@@ -35,9 +36,12 @@ struct PresetPath {
   double angle = 1.5707963267948966;  // rotating_principal_axes: total rotation (rad)
   std::vector<double> cycleStrains;   // cyclic: peak strains of successive cycles
   double opening = 0.0;       // > 0: after onset, continue under opening control to this jump (mm)
+  double firstOpeningIncrement = 0.0;  // > 0: geometric opening increments starting with this (mm)
 };
 
 const std::vector<std::string>& presetNames();
+// Normal jump at increment k of an opening segment (uniform, or geometric from its first increment).
+double openingAt(const Segment& s, double start, int k);
 std::vector<Segment> presetSegments(const PresetPath& preset, double poissonRatio);
 
 }  // namespace ecm

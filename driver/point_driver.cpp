@@ -147,7 +147,7 @@ class Runner {
     if (!point_.band && !stepToOnset(k, o)) return false;
     const double jump0 = point_.band->normalJump();
     for (int i = 1; i <= seg.increments; ++i) {
-      o.normalJump = jump0 + (seg.openingTarget - jump0) * i / seg.increments;
+      o.normalJump = openingAt(seg, jump0, i);
       MaterialPoint trial = point_;
       const OpeningOutcome out = openingControlStep(*model, trial, o, settings_.tolerance);
       if (!out.step.converged()) return fail(out.step, k, i);

@@ -91,6 +91,7 @@ UpdateResult EnrichedBand::updateCracked(BandState& b, Voigt& strain, const Voig
   const bool startsOnSurface = eq.band.drivingForce >= surface.threshold * (1.0 - 1e-12) &&
                                eq.band.drivingForce > 0.0;
   int it = 0;
+  bool sawUnstableBranch = false;
   for (; rn > tol && it < kMaxIterations; ++it) {
     Vec2 step = eq.jacobian.partialPivLu().solve(eq.residual);
     if (it == 0 && startsOnSurface) {
@@ -124,17 +125,31 @@ UpdateResult EnrichedBand::updateCracked(BandState& b, Voigt& strain, const Voig
     jump += alpha * step;
     eq = trial;
     rn = eq.residual.norm();
+    sawUnstableBranch = sawUnstableBranch || (eq.band.loading && !positiveDefinite(eq.jacobian));
   }
   res.residual = rn;
   res.iterations = it;
   res.stress = eq.stress;
   if (!(rn <= tol)) {
-    res.status = UpdateStatus::NotConverged;
+    // Newton that wandered through loading states with C of Eq. (9) not positive was looking
+    // for a branch that does not continue: that is a snap-back, not a numerical failure.
+    res.status = sawUnstableBranch ? UpdateStatus::SnapBack : UpdateStatus::NotConverged;
     return res;
   }
   if (it > 0 && eq.band.loading && !positiveDefinite(eq.jacobian)) {
     res.status = UpdateStatus::SnapBack;  // Newton drifted onto a branch strain control cannot reach
     return res;
+  }
+  // A large loading increment may have jumped over a snap-back: the branch between the two
+  // converged states must stay stable (C of Eq. (9) positive) all along, checked at samples.
+  if (eq.band.loading && (jump - b.jump).norm() > kJumpCheck * bandWidth_) {
+    for (int k = 1; k < kJumpSamples; ++k) {
+      const BandEquilibrium mid = equilibrium(b, surface, eps, b.jump + (double(k) / kJumpSamples) * (jump - b.jump), true);
+      if (mid.band.loading && !positiveDefinite(mid.jacobian)) {
+        res.status = UpdateStatus::SnapBack;
+        return res;
+      }
+    }
   }
   res.tangent = consistentTangent(b, eq);
   res.dissipation = b.volumeFraction * law_.dissipation(b.integrity, eq.band.integrity);  // f int Y dD

@@ -90,6 +90,9 @@ class EnrichedBand {
   static constexpr int kMaxIterations = 60;
   static constexpr double kRelativeTolerance = 1e-10;  // |residual| <= this * f_t' + kRoundOff |a eps|
   static constexpr double kRoundOff = 1e-13;
+  // Loading increments whose jump exceeds kJumpCheck h are checked for a skipped snap-back.
+  static constexpr double kJumpCheck = 1e-3;
+  static constexpr int kJumpSamples = 8;
 
  private:
   UpdateResult updateIntactSlow(Voigt& strain, const Voigt& strainIncrement, const EffectiveSize& size,

@@ -4,7 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "material/enriched_uniaxial.hpp"
+#include "material/paper_concrete.hpp"
+#include "material/uniaxial_closed_form.hpp"
 
 namespace ecm {
 namespace {
@@ -22,6 +23,14 @@ MaterialParams concrete(ModelKind kind, double nu = test::kNu) {
   return p;
 }
 
+PresetPath preset(const std::string& name, double strain, int increments) {
+  PresetPath p;
+  p.name = name;
+  p.strain = strain;
+  p.increments = increments;
+  return p;
+}
+
 PointScene scene(ModelKind kind, double bigH, const PresetPath& preset, double nu = test::kNu) {
   PointScene s;
   s.material = concrete(kind, nu);
@@ -35,26 +44,28 @@ const DamageLawParams kLaw{test::kE, test::kFt, test::kEp, test::kN};
 TEST(PointDriver, ElasticPathsFollowHookesLaw) {
   // Closed forms of plane-stress Hooke's law: uniaxial stress, uniaxial strain, pure shear.
   const double e = 5e-5;
-  PointRun a = runPoint(scene(ModelKind::LinearElastic, 10.0, {"uniaxial_tension", e, 10}));
+  PointRun a = runPoint(scene(ModelKind::LinearElastic, 10.0, preset("uniaxial_tension", e, 10)));
   ASSERT_TRUE(a.completed) << a.failure;
   EXPECT_NEAR(a.history.back().stress[0], test::kE * e, 1e-9);
   EXPECT_NEAR(a.history.back().strain[1], -test::kNu * e, 1e-15);
-  PointRun b = runPoint(scene(ModelKind::LinearElastic, 10.0, {"uniaxial_strain", e, 10}));
+  PointRun b = runPoint(scene(ModelKind::LinearElastic, 10.0, preset("uniaxial_strain", e, 10)));
   EXPECT_NEAR(b.history.back().stress[0], test::kE / (1 - test::kNu * test::kNu) * e, 1e-9);
   EXPECT_NEAR(b.history.back().stress[1], test::kNu * test::kE / (1 - test::kNu * test::kNu) * e, 1e-9);
-  PointRun c = runPoint(scene(ModelKind::LinearElastic, 10.0, {"pure_shear", e, 10}));
+  PointRun c = runPoint(scene(ModelKind::LinearElastic, 10.0, preset("pure_shear", e, 10)));
   EXPECT_NEAR(c.history.back().stress[2], test::kE / (2 * (1 + test::kNu)) * e, 1e-9);
 }
 
 TEST(PointDriver, MixedControlKeepsTheControlledStressesAtZero) {
   // Uniaxial tension then shear (sig_yy controlled throughout): residual <= 1e-8 f_t'.
-  PresetPath p{"tension_then_shear", 2e-4, 100};
+  PresetPath p = preset("tension_then_shear", 2e-4, 100);
   p.shear = 4e-4;
   PointRun run = runPoint(scene(ModelKind::Enriched, 2.5, p));
   ASSERT_TRUE(run.completed) << run.failure;
   for (const HistoryRow& r : run.history) {
     EXPECT_LE(std::abs(r.stress[1]), 1e-8 * test::kFt) << "increment " << r.increment;
-    if (r.segment == 1) EXPECT_LE(std::abs(r.stress[2]), 1e-8 * test::kFt);
+    if (r.segment == 1) {
+      EXPECT_LE(std::abs(r.stress[2]), 1e-8 * test::kFt);
+    }
   }
   EXPECT_GT(run.history.back().damage, 0.9);
 }
@@ -64,15 +75,13 @@ TEST(PointDriver, EnrichedUniaxialRunMatchesTheClosedForm) {
   // with the band's exact response (frozen lateral band strain, nu = 0.2), compared at equal
   // strain by interpolating the closed form; tolerance 0.5% of f_t' (issue 3).
   const double bigH = 100.0;
-  PointRun run = runPoint(scene(ModelKind::Enriched, bigH, {"uniaxial_tension", 4e-4, 400}));
+  PointRun run = runPoint(scene(ModelKind::Enriched, bigH, preset("uniaxial_tension", 4e-4, 400)));
   ASSERT_TRUE(run.completed) << run.failure;
-  const double eps0 = -test::kNu * test::kFt / test::kE;
   // The closed-form curve, parameterised by the band integrity x (monotonic in strain here).
   std::vector<std::pair<double, double>> curve;
   for (double lx = 0.0; lx > -12.0; lx -= 0.002) {
-    const auto band = test::frozenLateralBand(kLaw, test::kNu, eps0, std::pow(10.0, lx));
-    const double w = test::kH * (band.bandStrain - band.stress / test::kE);
-    curve.emplace_back(band.stress / test::kE + w / bigH, band.stress);
+    const auto band = uniaxialBandResponse(kLaw, test::kNu, test::kH, std::pow(10.0, lx));
+    curve.emplace_back(uniaxialMacroStrain(band, test::kE, bigH), band.stress);
   }
   double worst = 0.0;
   for (const HistoryRow& r : run.history) {
@@ -91,7 +100,7 @@ TEST(PointDriver, EnrichedUniaxialRunMatchesTheClosedForm) {
 TEST(PointDriver, EnrichedPointDissipatesTheFractureEnergyUnderOpeningControl) {
   // Energy identity (MODEL-NOTES): H x dissipation per volume = h int F dD = 0.110 N/mm.
   for (double bigH : {1.0, 100.0, 500.0, 2000.0}) {
-    PresetPath p{"uniaxial_tension", 5e-5, 20};
+    PresetPath p = preset("uniaxial_tension", 5e-5, 20);
     p.opening = 20.0;  // mm: far into the tail (the stress there is < 1e-4 f_t')
     PointScene s = scene(ModelKind::Enriched, bigH, p);
     s.path.back().increments = 4000;
@@ -109,13 +118,13 @@ TEST(PointDriver, SnapBackIsDetectedUnderStrainControlAndTracedUnderOpeningContr
   // branch; the driver reports it (first increment, stress drop > 0) and jumps. Under opening
   // control the branch is traced: the macro strain decreases while the opening grows.
   const double bigH = 500.0;
-  PointRun strain = runPoint(scene(ModelKind::Enriched, bigH, {"uniaxial_tension", 3e-4, 300}, 0.0));
+  PointRun strain = runPoint(scene(ModelKind::Enriched, bigH, preset("uniaxial_tension", 3e-4, 300), 0.0));
   ASSERT_TRUE(strain.completed) << strain.failure;
   ASSERT_TRUE(strain.snapBack.detected);
   EXPECT_NEAR(strain.snapBack.stressBefore, test::kFt, 0.01 * test::kFt);
   EXPECT_LT(strain.snapBack.stressAfter, strain.snapBack.stressBefore - 0.1 * test::kFt);
   EXPECT_EQ(strain.snapBack.increment, 1 + static_cast<int>(test::kFt / test::kE / 1e-6));
-  PresetPath p{"uniaxial_tension", 5e-5, 10, 1.0};
+  PresetPath p = preset("uniaxial_tension", 5e-5, 10);
   p.opening = 0.5;
   PointScene s = scene(ModelKind::Enriched, bigH, p, 0.0);
   s.path.back().increments = 500;
@@ -141,7 +150,7 @@ TEST(PointDriver, SnapBackIsDetectedUnderStrainControlAndTracedUnderOpeningContr
 TEST(PointDriver, CyclicUnloadingIsSecantToTheOrigin) {
   // Eq. (11) with D frozen while unloading: sigma = (1 - D) a eps for the smeared crack, and
   // for the enriched point with nu = 0 the macro response is secant to the origin as well.
-  PresetPath p{"cyclic", 0.0, 50};
+  PresetPath p = preset("cyclic", 0.0, 50);
   p.cycleStrains = {1.5e-4, 3e-4, 6e-4};
   for (ModelKind kind : {ModelKind::SmearedCrack, ModelKind::Enriched}) {
     PointScene s = scene(kind, 50.0, p, 0.0);

@@ -1,7 +1,5 @@
 #pragma once
-// Test helper: an enriched point of effective size H driven in uniaxial stress, and the exact
-// band response with the band's lateral strain frozen at onset (MODEL-NOTES: band strain changes
-// only through the jump), parameterised by the band integrity x.
+// Test helper: an enriched point of effective size H driven in uniaxial stress.
 #include <cmath>
 #include <vector>
 
@@ -43,18 +41,5 @@ struct EnrichedRun {
     return true;
   }
 };
-
-// Exact band response in plane stress with the lateral band strain eps0 frozen (both effective
-// principal stresses non-negative, so Y = eps : a : eps / 2 = F(x), Eq. (12)).
-struct FrozenLateralBand {
-  double stress;      // sigma_nn = x (a eps_L)_nn
-  double bandStrain;  // eps_L,nn
-};
-inline FrozenLateralBand frozenLateralBand(const DamageLawParams& law, double nu, double eps0, double x) {
-  const double ePrime = law.youngsModulus / (1.0 - nu * nu);
-  const double f = damageFunction(law, x);
-  const double e = -nu * eps0 + std::sqrt(nu * nu * eps0 * eps0 - eps0 * eps0 + 2.0 * f / ePrime);
-  return {x * ePrime * (e + nu * eps0), e};
-}
 
 }  // namespace ecm::test

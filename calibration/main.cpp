@@ -1,0 +1,114 @@
+// ecm-calibrate: parameters of the band's damage law (Eq. (13)) from a fracture energy, a target
+// softening curve, or a crack-band element size. A thin main over the calibration library;
+// see calibration/README.md. Exit status: 0 done, 1 bad input, 2 no crack-band E_p exists
+// (H >= H_crit), 3 output could not be written.
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+#include <map>
+
+#include "calibration/calibration_error.hpp"
+#include "calibration/calibration_input.hpp"
+#include "calibration/calibration_run.hpp"
+#include "io/material_yaml.hpp"
+#include "io/output_dir.hpp"
+#include "io/output_error.hpp"
+#include "material/parameter_check.hpp"
+#include "material/smeared_crack.hpp"
+
+namespace {
+
+using namespace ecm;
+using namespace ecm::calibration;
+
+constexpr int kBadInput = 1, kNoRegularisation = 2, kOutputFailed = 3;
+
+int run(const CalibrationInput& cli, const std::optional<std::filesystem::path>& inputFile) {
+  CalibrationInput in;
+  if (inputFile) in = readCalibrationInput(*inputFile);
+  overlay(in, cli);
+  const CalibrationPlan plan = planCalibration(in);
+  io::prepareOutputDir(plan.out);
+  const CalibrationResult result = runCalibration(plan);
+  printTable(result, std::cout);
+  writeOutputs(result, plan.out);
+  std::cout << "  outputs in " << plan.out.string() << ": summary.json, softening.csv"
+            << (result.target ? ", target.csv" : "") << ", softening.png\n";
+  if (plan.writeMaterial) {
+    io::writeMaterialFile(calibratedMaterial(result, plan), *plan.writeMaterial);
+    std::cout << "  material written to " << plan.writeMaterial->string() << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "ecm-calibrate: calibrate the band damage law F(D) of Eq. (13) (units: mm, N, MPa).\n"
+      "  solve E_p:   --E 32000 --ft 3.0 --GF 0.11 --h 0.05 --n 0.128\n"
+      "  fit n, E_p:  --E 32000 --ft 3.0 --GF 0.11 --h 0.05 --fit hordijk   (or --fit-csv FILE)\n"
+      "  forward:     --E 32000 --ft 3.0 --h 0.05 --Ep 8.184 --n 0.128\n"
+      "  crack band:  --E 32000 --ft 3.0 --GF 0.11 --n 0.128 --smeared-H 100\n"
+      "Exit status: 0 done, 1 bad input, 2 no crack-band E_p (H >= H_crit), 3 output failed."};
+  app.set_help_flag("--help", "Print this help and exit");
+
+  std::map<std::string, double> values;
+  for (const Quantity& q : quantities())
+    app.add_option(q.flag, values[q.key], std::string(q.key) + ": " + q.symbol + " (" + q.unit + ")");
+  std::optional<std::filesystem::path> inputFile;
+  std::string fit, fitCsv, out, writeMaterial, name, hypothesis;
+  app.add_option("--input", inputFile, "YAML input with the same quantities as keys (command line overrides it)");
+  app.add_option("--fit", fit, "fit n and E_p to a target curve: hordijk");
+  app.add_option("--fit-csv", fitCsv, "fit n and E_p to measured points: CSV of w (mm), sigma (MPa)");
+  app.add_option("--out", out, "output folder (default out/calibrate)");
+  app.add_option("--write-material", writeMaterial, "write the calibrated material YAML to this file (needs --nu)");
+  app.add_option("--name", name, "name of the written material (default calibrated)");
+  app.add_option("--hypothesis", hypothesis, "plane_stress (default) | plane_strain, for the written material");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : kBadInput;  // --help exits 0
+  }
+
+  CalibrationInput cli;
+  for (const Quantity& q : quantities())
+    if (app.count(q.flag) > 0) cli.*q.member = values[q.key];
+  if (app.count("--fit") > 0) {
+    if (fit != "hordijk") {
+      std::cerr << "ecm-calibrate: error: --fit '" << fit << "' is not one of: hordijk (use --fit-csv FILE for measured points)\n";
+      return kBadInput;
+    }
+    cli.fit = fit;
+  }
+  if (app.count("--fit-csv") > 0) cli.fitCsv = fitCsv;
+  if (app.count("--out") > 0) cli.out = out;
+  if (app.count("--write-material") > 0) cli.writeMaterial = writeMaterial;
+  if (app.count("--name") > 0) cli.name = name;
+  if (app.count("--hypothesis") > 0) cli.hypothesis = hypothesis;
+
+  try {
+    return run(cli, inputFile);
+  } catch (const RegularisationError& e) {
+    std::cerr.precision(10);
+    std::cerr << "ecm-calibrate: no softening modulus E_p exists: " << e.what() << "\n  H_crit = " << e.criticalSize
+              << " mm\n  needed tensile strength = " << e.requiredStrength << " MPa\n";
+    return kNoRegularisation;
+  } catch (const io::InputError& e) {
+    std::cerr << e.what() << "\n";
+    return kBadInput;
+  } catch (const CalibrationError& e) {
+    std::cerr << "ecm-calibrate: error: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const ParameterError& e) {
+    std::cerr << "ecm-calibrate: error: " << e.what() << "\n";
+    return kBadInput;
+  } catch (const io::OutputError& e) {
+    std::cerr << "ecm-calibrate: error: " << e.what() << "\n";
+    return kOutputFailed;
+  } catch (const std::exception& e) {
+    std::cerr << "ecm-calibrate: error: " << e.what() << "\n";
+    return kOutputFailed;
+  }
+}

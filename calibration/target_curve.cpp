@@ -1,0 +1,89 @@
+#include "calibration/target_curve.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "calibration/calibration_error.hpp"
+#include "io/csv_reader.hpp"
+#include "io/yaml_input.hpp"
+
+namespace ecm::calibration {
+
+namespace {
+constexpr double kC1 = 3.0, kC2 = 6.93, kCriticalOpeningFactor = 5.14;
+constexpr std::size_t kMinimumPoints = 3;
+
+std::string str(double v) {
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
+}
+}  // namespace
+
+double hordijkCriticalOpening(double ft, double gf) { return kCriticalOpeningFactor * gf / ft; }
+
+double hordijkStress(double w, double ft, double gf) {
+  const double r = w / hordijkCriticalOpening(ft, gf);
+  if (r >= 1.0) return 0.0;
+  if (r <= 0.0) return ft;
+  const double c1r = kC1 * r;
+  return ft * ((1.0 + c1r * c1r * c1r) * std::exp(-kC2 * r) - r * (1.0 + kC1 * kC1 * kC1) * std::exp(-kC2));
+}
+
+TargetCurve hordijkCurve(double ft, double gf, int count) {
+  if (count < static_cast<int>(kMinimumPoints)) throw CalibrationError("hordijk curve: at least 3 points");
+  TargetCurve t;
+  t.source = "hordijk";
+  const double wc = hordijkCriticalOpening(ft, gf);
+  for (int i = 1; i <= count; ++i) {
+    const double w = wc * i / count;
+    t.opening.push_back(w);
+    t.stress.push_back(hordijkStress(w, ft, gf));
+  }
+  return t;
+}
+
+std::string hordijkGnuplot(double ft, double gf) {
+  const std::string r = "(x/" + str(hordijkCriticalOpening(ft, gf)) + ")";
+  return "(x < " + str(hordijkCriticalOpening(ft, gf)) + " ? " + str(ft) + "*((1+(3*" + r + ")**3)*exp(-6.93*" + r +
+         ") - " + r + "*28*exp(-6.93)) : 0)";
+}
+
+TargetCurve readTargetCsv(const std::filesystem::path& path) {
+  const io::CsvTable table = io::readCsv(path, 2);
+  const std::string file = path.string();
+  TargetCurve t;
+  t.source = file;
+  for (std::size_t i = 0; i < table.rows.size(); ++i) {
+    const double w = table.rows[i][0], sigma = table.rows[i][1];
+    if (w < 0.0) throw io::InputError(file, table.lines[i], "opening w = " + str(w) + " mm is negative (must be >= 0)");
+    if (i > 0 && !(w > t.opening.back()))
+      throw io::InputError(file, table.lines[i], "openings must increase strictly: w = " + str(w) + " mm after w = " +
+                                                     str(t.opening.back()) + " mm");
+    t.opening.push_back(w);
+    t.stress.push_back(sigma);
+  }
+  if (t.opening.size() < kMinimumPoints)
+    throw io::InputError(file, table.lines.empty() ? 1 : table.lines.back(),
+                         std::to_string(t.opening.size()) + " data point(s) (w, sigma); at least " +
+                             std::to_string(kMinimumPoints) + " are needed");
+  return t;
+}
+
+void validateTarget(const TargetCurve& t) {
+  if (t.opening.size() != t.stress.size()) throw CalibrationError("target curve: as many openings as stresses needed");
+  if (t.opening.size() < kMinimumPoints)
+    throw CalibrationError("target curve: " + std::to_string(t.opening.size()) + " point(s); at least " +
+                           std::to_string(kMinimumPoints) + " are needed");
+  for (std::size_t i = 0; i < t.opening.size(); ++i) {
+    if (!std::isfinite(t.opening[i]) || !std::isfinite(t.stress[i]))
+      throw CalibrationError("target curve: point " + std::to_string(i + 1) + " is not finite");
+    if (t.opening[i] < 0.0) throw CalibrationError("target curve: opening w = " + str(t.opening[i]) + " mm is negative");
+    if (i > 0 && !(t.opening[i] > t.opening[i - 1]))
+      throw CalibrationError("target curve: openings must increase strictly: w = " + str(t.opening[i]) +
+                             " mm after w = " + str(t.opening[i - 1]) + " mm");
+  }
+}
+
+}  // namespace ecm::calibration

@@ -1,0 +1,21 @@
+#pragma once
+// What a point run leaves in its output folder: history.csv (every increment), summary.json
+// and the plots stress_strain.png and traction_opening.png.
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "driver/point_driver.hpp"
+
+namespace ecm {
+
+void writeHistoryCsv(const PointRun& run, const std::filesystem::path& file);
+nlohmann::json pointSummaryJson(const PointScene& scene, const PointRun& run);
+void writePointPlots(const PointScene& scene, const std::filesystem::path& dir);
+// All of the above into `dir`.
+void writePointOutputs(const PointScene& scene, const PointRun& run, const std::filesystem::path& dir);
+
+// Traction normal to the crack, n . sigma . n (MPa); sigma_xx before cracking.
+double normalTraction(const HistoryRow& r);
+
+}  // namespace ecm

@@ -1,0 +1,94 @@
+#include "driver/point_scene_yaml.hpp"
+
+#include <array>
+
+#include "io/material_yaml.hpp"
+
+namespace ecm {
+
+namespace {
+
+using io::Range;
+using io::YamlMap;
+
+constexpr std::array<const char*, 3> kStrainKeys = {"eps_xx", "eps_yy", "gamma_xy"};
+constexpr std::array<const char*, 3> kStressKeys = {"sig_xx", "sig_yy", "sig_xy"};
+
+// One segment: each component given exactly once, as a strain or as a stress.
+Segment readSegment(const YamlMap& m) {
+  Segment s;
+  s.increments = m.get<int>("increments", Range{1.0, 1e9, true, true});
+  for (int c = 0; c < 3; ++c) {
+    const bool strain = m.has(kStrainKeys[c]), stress = m.has(kStressKeys[c]);
+    if (strain == stress)
+      m.failHere(std::string("give exactly one of '") + kStrainKeys[c] + "' (strain) or '" + kStressKeys[c] +
+                 "' (stress, MPa)");
+    s.control[c] = strain ? Control::Strain : Control::Stress;
+    s.target[c] = m.get<double>(strain ? kStrainKeys[c] : kStressKeys[c], Range::any());
+  }
+  if (m.has("opening")) {
+    s.openingControl = true;
+    s.openingTarget = m.get<double>("opening", Range::positive());
+    s.firstOpeningIncrement = m.getOr<double>("first_increment", 0.0, Range::nonNegative());
+    if (!s.hasStressControl() && s.target.isZero()) m.failHere("an opening-controlled segment needs a strain direction");
+    bool anyStrain = false;
+    for (int c = 0; c < 3; ++c) anyStrain = anyStrain || (s.control[c] == Control::Strain && s.target[c] != 0.0);
+    if (!anyStrain)
+      m.failHere("an opening-controlled segment needs at least one non-zero strain component (its direction)");
+  }
+  return s;
+}
+
+std::vector<Segment> readPath(const YamlMap& path, double nu) {
+  if (path.has("segments")) {
+    std::vector<Segment> segments;
+    for (const YamlMap& m : path.sequence("segments")) segments.push_back(readSegment(m));
+    if (segments.empty()) path.fail("segments", "the path has no segments");
+    return segments;
+  }
+  PresetPath p;
+  p.name = path.getEnum("preset", {"uniaxial_tension", "uniaxial_strain", "biaxial", "pure_shear",
+                                   "tension_then_shear", "rotating_principal_axes", "cyclic", "compression"});
+  p.increments = path.get<int>("increments", Range{1.0, 1e9, true, true});
+  if (p.name == "cyclic") {
+    p.cycleStrains = path.getVector("cycle_strains", 0, Range::positive());
+  } else {
+    p.strain = path.get<double>("strain", Range::positive());
+  }
+  if (p.name == "biaxial") p.ratio = path.get<double>("ratio", Range::any());
+  if (p.name == "tension_then_shear") p.shear = path.get<double>("shear", Range::any());
+  if (p.name == "rotating_principal_axes") p.angle = path.get<double>("angle", Range::positive());
+  p.opening = path.getOr<double>("opening", 0.0, Range::nonNegative());
+  if (p.opening > 0.0) p.firstOpeningIncrement = path.getOr<double>("first_opening_increment", 0.0, Range::nonNegative());
+  return presetSegments(p, nu);
+}
+
+}  // namespace
+
+PointScene readPointScene(const YamlMap& map) {
+  PointScene s;
+  s.name = map.getOr<std::string>("name", map.file());
+  s.material = io::readMaterial(map.child("material"));
+  if (map.has("hypothesis"))
+    s.material.elastic.hypothesis =
+        map.getEnum("hypothesis", {"plane_stress", "plane_strain"}) == "plane_stress" ? Hypothesis::PlaneStress
+                                                                                       : Hypothesis::PlaneStrain;
+  s.effectiveSize = map.get<double>("effective_size", Range::positive());
+  if (s.material.model == ModelKind::Enriched && !(s.effectiveSize > s.material.bandWidth))
+    map.fail("effective_size", "H = " + std::to_string(s.effectiveSize) + " mm must exceed the band width h = " +
+                                   std::to_string(s.material.bandWidth) + " mm (f = h/H < 1, Eq. (1))");
+  s.onSnapBack = map.getEnumOr("on_snapback", {"jump", "stop"}, "jump") == "jump" ? OnSnapBack::Jump : OnSnapBack::Stop;
+  s.relativeTolerance = map.getOr<double>("tolerance", 1e-8, Range{0.0, 1e-3, false, true});
+  const YamlMap path = map.child("path");
+  s.path = readPath(path, s.material.elastic.poissonRatio);
+  for (const Segment& seg : s.path)
+    if (seg.openingControl && s.material.model != ModelKind::Enriched)
+      path.failHere(std::string("opening control needs a band (model: enriched); this material is ") +
+                    toString(s.material.model));
+  map.finish();
+  return s;
+}
+
+PointScene loadPointScene(const std::filesystem::path& file) { return readPointScene(io::loadYamlFile(file)); }
+
+}  // namespace ecm

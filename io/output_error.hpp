@@ -1,0 +1,15 @@
+#pragma once
+// The error every writer of io/ throws when a file or folder cannot be written: it names the path.
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+namespace ecm::io {
+
+struct OutputError : std::runtime_error {
+  OutputError(const std::filesystem::path& where, const std::string& reason)
+      : std::runtime_error("cannot write '" + where.string() + "': " + reason), path(where) {}
+  std::filesystem::path path;
+};
+
+}  // namespace ecm::io

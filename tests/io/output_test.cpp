@@ -1,0 +1,162 @@
+// Output folders, JSON summaries, gnuplot plots and the progress reporter.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "io/gnuplot.hpp"
+#include "io/json_summary.hpp"
+#include "io/output_dir.hpp"
+#include "io/output_error.hpp"
+#include "io/progress.hpp"
+#include "temp_dir.hpp"
+
+namespace ecm::io {
+namespace {
+
+using test::expectContains;
+using test::readFile;
+using test::TempDir;
+
+TEST(OutputDir, CreatesNestedFoldersAndLeavesNoProbe) {
+  const TempDir dir;
+  const auto out = dir.path() / "a" / "b" / "c";
+  EXPECT_EQ(prepareOutputDir(out), out);
+  EXPECT_TRUE(std::filesystem::is_directory(out));
+  EXPECT_TRUE(std::filesystem::is_empty(out));
+  EXPECT_NO_THROW(prepareOutputDir(out));  // existing folder is fine
+}
+
+TEST(OutputDir, RefusesAFileOrAFolderBelowAFile) {
+  const TempDir dir;
+  const auto file = dir.write("plain.txt", "x");
+  for (const auto& bad : {file, file / "sub"}) {
+    try {
+      prepareOutputDir(bad);
+      FAIL() << "no error for " << bad;
+    } catch (const OutputError& e) {
+      expectContains(e.what(), bad.string());
+    }
+  }
+}
+
+TEST(JsonSummary, WritesAtomicallyAndOverwrites) {
+  const TempDir dir;
+  const auto path = dir.path() / "summary.json";
+  writeJsonSummary({{"Ep", 8.184}, {"n", 0.128}}, path);
+  writeJsonSummary({{"Ep", 8.18}, {"label", "second"}}, path);
+  const auto j = nlohmann::json::parse(readFile(path));
+  EXPECT_EQ(j.at("Ep").get<double>(), 8.18);
+  EXPECT_EQ(j.at("label"), "second");
+  EXPECT_FALSE(j.contains("n"));
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "summary.json.tmp"));
+}
+
+TEST(JsonSummary, UnwritablePathThrowsNamingIt) {
+  const TempDir dir;
+  const auto path = dir.path() / "missing" / "summary.json";
+  try {
+    writeJsonSummary({{"a", 1}}, path);
+    FAIL();
+  } catch (const OutputError& e) {
+    expectContains(e.what(), path.string());
+  }
+}
+
+PlotSpec sampleSpec() {
+  PlotSpec spec;
+  spec.title = "softening of 'den' concrete";
+  spec.xLabel = "w (mm)";
+  spec.yLabel = "sigma (MPa)";
+  spec.functions = {"f(x) = 3*exp(-x/0.05)"};
+  spec.series = {{"curve.csv", "1:2", "", "model", "lines"}, {"", "", "f(x)", "target", "lines dt 2"}};
+  return spec;
+}
+
+TEST(Gnuplot, ScriptHasTerminalFallbackLabelsFunctionsAndSeries) {
+  const std::string s = gnuplotScript(sampleSpec(), "plot.png");
+  expectContains(s, "pngcairo");
+  expectContains(s, "set terminal png size");
+  expectContains(s, "set output 'plot.png'");
+  expectContains(s, "set title 'softening of ''den'' concrete'");
+  expectContains(s, "f(x) = 3*exp(-x/0.05)");
+  expectContains(s, "'curve.csv' using 1:2 title 'model' with lines");
+  expectContains(s, "f(x) title 'target' with lines dt 2");
+}
+
+TEST(Gnuplot, RendersAPngWhenGnuplotIsThere) {
+  const TempDir dir;
+  dir.write("curve.csv", "w,sigma\n0,3\n0.05,1.1\n0.1,0.4\n");
+  const bool ok = renderPlot(sampleSpec(), dir.path() / "plot.png");
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "plot.gp"));
+  if (std::system("gnuplot --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed";
+  EXPECT_TRUE(ok);
+  EXPECT_GT(std::filesystem::file_size(dir.path() / "plot.png"), 1000u);
+}
+
+TEST(Gnuplot, MissingOrFailingGnuplotOnlyWarns) {
+  const TempDir dir;
+  PlotSpec spec = sampleSpec();
+  spec.gnuplot = "ecm-no-such-gnuplot";
+  ::testing::internal::CaptureStderr();
+  EXPECT_FALSE(renderPlot(spec, dir.path() / "plot.png"));
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  expectContains(err, "warning: plot");
+  expectContains(err, "not found");
+  spec.gnuplot = "false";  // starts, then fails
+  ::testing::internal::CaptureStderr();
+  EXPECT_FALSE(renderPlot(spec, dir.path() / "plot.png"));
+  expectContains(::testing::internal::GetCapturedStderr(), "failed");
+}
+
+std::string captured(std::FILE* f) {
+  std::fflush(f);
+  std::rewind(f);
+  std::string s;
+  for (int c; (c = std::fgetc(f)) != EOF;) s += static_cast<char>(c);
+  return s;
+}
+
+TEST(Progress, PlainModePrintsLinesAndOneFinalLine) {
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  {
+    Progress p(200.0, {"run", 0.0, f, false});
+    EXPECT_FALSE(p.terminal());
+    p.update(50.0);
+    p.update(100.0);
+    p.finish();
+    p.update(150.0);  // ignored after finish
+  }                   // no second final line from the destructor
+  const std::string s = captured(f);
+  std::fclose(f);
+  expectContains(s, "run:  25.0%");
+  expectContains(s, "run:  50.0%");
+  expectContains(s, "ETA");
+  expectContains(s, "run: done (50.0%) in");
+  EXPECT_EQ(s.find("75.0%"), std::string::npos);
+  EXPECT_EQ(s.find("done", s.find("done") + 1), std::string::npos);
+  EXPECT_EQ(s.find('\r'), std::string::npos);
+}
+
+TEST(Progress, TerminalModeRedrawsInPlace) {
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  {
+    Progress p(10.0, {"mpm", 0.0, f, true});
+    p.update(10.0);  // within 0.1 s of the start: not drawn
+  }
+  const std::string s = captured(f);
+  std::fclose(f);
+  expectContains(s, "\r\033[Kmpm: done (100.0%)");
+}
+
+TEST(Progress, Durations) {
+  EXPECT_EQ(formatDuration(12.34), "12.3 s");
+  EXPECT_EQ(formatDuration(125.0), "2:05");
+  EXPECT_EQ(formatDuration(3725.0), "1:02:05");
+  EXPECT_EQ(formatDuration(-1.0), "?");
+}
+
+}  // namespace
+}  // namespace ecm::io
