@@ -8,9 +8,8 @@ namespace ecm {
 namespace {
 
 // One attempt without sub-stepping.
-StepOutcome solveIncrement(const Material& material, const MaterialPoint& start, MaterialPoint& end,
-                           const Voigt& currentStress, const MixedTarget& t, const EffectiveSize& size,
-                           const MixedControlSettings& s) {
+StepOutcome solveIncrement(const PointUpdate& update, const Tangent& a, const MaterialPoint& start, MaterialPoint& end,
+                           const Voigt& currentStress, const MixedTarget& t, const MixedControlSettings& s) {
   std::vector<int> free;
   for (int i = 0; i < 3; ++i)
     if (t.control[i] == Control::Stress) free.push_back(i);
@@ -18,7 +17,6 @@ StepOutcome solveIncrement(const Material& material, const MaterialPoint& start,
   StepOutcome out;
   Voigt d = t.strainIncrement;
   // Elastic predictor for the stress-controlled components: a_ss d_s = dsigma_s - a_sk d_k.
-  const Tangent& a = material.stiffness();
   const auto solveFree = [&](const Tangent& k, const Voigt& rhs) {
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3> kk(m, m);
     Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1> r(m);
@@ -38,7 +36,7 @@ StepOutcome solveIncrement(const Material& material, const MaterialPoint& start,
   double previous = INFINITY;
   for (int it = 0; it <= s.maxIterations; ++it) {
     end = start;
-    out.result = material.update(end, d, size);
+    out.result = update(end, d);
     out.strainIncrement = d;
     out.iterations = it;
     if (!out.result.converged()) return out;
@@ -59,10 +57,10 @@ StepOutcome solveIncrement(const Material& material, const MaterialPoint& start,
   return out;
 }
 
-StepOutcome substepped(const Material& material, MaterialPoint& point, const Voigt& currentStress,
-                       const MixedTarget& t, const EffectiveSize& size, const MixedControlSettings& s, int level) {
+StepOutcome substepped(const PointUpdate& update, const Tangent& a, MaterialPoint& point, const Voigt& currentStress,
+                       const MixedTarget& t, const MixedControlSettings& s, int level) {
   MaterialPoint end;
-  StepOutcome out = solveIncrement(material, point, end, currentStress, t, size, s);
+  StepOutcome out = solveIncrement(update, a, point, end, currentStress, t, s);
   if (out.converged()) {
     point = end;
     return out;
@@ -73,10 +71,10 @@ StepOutcome substepped(const Material& material, MaterialPoint& point, const Voi
   half.strainIncrement = 0.5 * t.strainIncrement;
   half.stress = 0.5 * (currentStress + t.stress);
   MaterialPoint trial = point;
-  StepOutcome first = substepped(material, trial, currentStress, half, size, s, level + 1);
+  StepOutcome first = substepped(update, a, trial, currentStress, half, s, level + 1);
   if (!first.converged()) return first;
-  StepOutcome second = substepped(material, trial, first.result.stress, {t.control, half.strainIncrement, t.stress}, size,
-                                  s, level + 1);
+  StepOutcome second =
+      substepped(update, a, trial, first.result.stress, {t.control, half.strainIncrement, t.stress}, s, level + 1);
   if (!second.converged()) return second;
   point = trial;
   second.strainIncrement += first.strainIncrement;
@@ -88,9 +86,9 @@ StepOutcome substepped(const Material& material, MaterialPoint& point, const Voi
 
 }  // namespace
 
-StepOutcome mixedControlStep(const Material& material, MaterialPoint& point, const Voigt& currentStress,
-                             const MixedTarget& target, const EffectiveSize& size, const MixedControlSettings& s) {
-  return substepped(material, point, currentStress, target, size, s, 0);
+StepOutcome mixedControlStep(const PointUpdate& update, const Tangent& elastic, MaterialPoint& point,
+                             const Voigt& currentStress, const MixedTarget& target, const MixedControlSettings& s) {
+  return substepped(update, elastic, point, currentStress, target, s, 0);
 }
 
 }  // namespace ecm

@@ -4,6 +4,7 @@
 // consistent tangent (residual <= tolerance), with the elastic stiffness as a fallback where
 // the tangent jumps (onset). A material update that fails to converge is sub-stepped.
 #include <array>
+#include <functional>
 
 #include "driver/load_path.hpp"
 #include "material/material.hpp"
@@ -32,8 +33,17 @@ struct MixedControlSettings {
   int maxSubstepLevels = 10; // up to 2^10 sub-steps of a failing increment
 };
 
+// One constitutive update of a point (normally Material::update at the point's H).
+using PointUpdate = std::function<UpdateResult(MaterialPoint& point, const Voigt& strainIncrement)>;
+
 // Commits the increment to `point` and returns its outcome; on failure `point` is unchanged.
-StepOutcome mixedControlStep(const Material& material, MaterialPoint& point, const Voigt& currentStress,
-                             const MixedTarget& target, const EffectiveSize& size, const MixedControlSettings& s);
+// `elastic` is the fallback stiffness for the stress-controlled components.
+StepOutcome mixedControlStep(const PointUpdate& update, const Tangent& elastic, MaterialPoint& point,
+                             const Voigt& currentStress, const MixedTarget& target, const MixedControlSettings& s);
+inline StepOutcome mixedControlStep(const Material& material, MaterialPoint& point, const Voigt& currentStress,
+                                    const MixedTarget& target, const EffectiveSize& size, const MixedControlSettings& s) {
+  return mixedControlStep([&](MaterialPoint& p, const Voigt& d) { return material.update(p, d, size); },
+                          material.stiffness(), point, currentStress, target, s);
+}
 
 }  // namespace ecm

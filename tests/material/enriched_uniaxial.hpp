@@ -32,8 +32,10 @@ struct EnrichedRun {
     };
   }
   // One uniaxial-stress increment of eps_xx; false if the update failed (e.g. snap-back).
+  // The lateral-stress tolerance grows with the effective stress a:eps (round-off at huge strains).
   bool step(double dExx, double tol = 1e-11) {
-    const auto r = uniaxialStressStep(trial(), dExx, model.stiffness(), tol);
+    const double scale = 1.0 + model.stiffness()(0, 0) * std::abs(state.strain[0]);
+    const auto r = uniaxialStressStep(trial(), dExx, model.stiffness(), tol * scale);
     if (!r) return false;
     work += 0.5 * (stress[0] + r->stress[0]) * dExx;
     stress = r->stress;
