@@ -1,0 +1,59 @@
+#pragma once
+// Boundary conditions and loads on node or particle sets picked by boxes (plain data).
+#include <array>
+#include <optional>
+#include <string>
+
+#include "mpm/geometry.hpp"
+#include "mpm/history.hpp"
+
+namespace ecm::mpm {
+
+enum class Prescribed {
+  Free,          // component not constrained
+  Fixed,         // v = 0
+  Velocity,      // v = history(t)                      (mm/s)
+  Displacement,  // u = history(t), imposed as v = (u(t + dt) - u(t)) / dt  (mm)
+};
+
+struct ComponentCondition {
+  Prescribed kind = Prescribed::Free;
+  History history;  // unused for Free and Fixed
+};
+
+// Velocity field v(x, t) = scale(t) * gradient * (x - origin) prescribed on both components
+// (drives a homogeneous deformation through the grid).
+struct AffineVelocity {
+  Mat2 gradient = Mat2::Zero();  // 1/s
+  Vec2 origin = Vec2::Zero();    // mm
+  History scale = History::hold(1.0);
+};
+
+// Constraint of the grid nodes inside `box`. The reaction (the force the constraint exerts,
+// N) is summed over the nodes every step.
+struct NodeCondition {
+  std::string name;
+  Box box;
+  std::array<ComponentCondition, 2> component;  // x, y
+  std::optional<AffineVelocity> field;           // if set, overrides `component`
+
+  static NodeCondition fixed(std::string name, Box b, bool x = true, bool y = true) {
+    NodeCondition c{std::move(name), b, {}, std::nullopt};
+    if (x) c.component[0].kind = Prescribed::Fixed;
+    if (y) c.component[1].kind = Prescribed::Fixed;
+    return c;
+  }
+};
+
+enum class LoadTarget { Nodes, Particles };
+
+// Total force `force * history(t)` (N) spread equally over the nodes or particles in `box`.
+struct Load {
+  std::string name;
+  Box box;
+  LoadTarget target = LoadTarget::Particles;
+  Vec2 force = Vec2::Zero();  // N (thickness included: the total on the set)
+  History history = History::hold(1.0);
+};
+
+}  // namespace ecm::mpm

@@ -1,0 +1,38 @@
+#pragma once
+// Material points, one array per field (structure of arrays, fixed-size Eigen types, no
+// per-particle heap). A cracked enriched point refers to its band state in a side array that
+// grows only when points crack.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "material/enriched_band.hpp"
+#include "mpm/shape_function.hpp"
+
+namespace ecm::mpm {
+
+struct Particles {
+  std::vector<Vec2> position;        // mm
+  std::vector<Vec2> displacement;    // mm, since the start
+  std::vector<Vec2> velocity;        // mm/s
+  std::vector<double> mass;          // t
+  std::vector<double> volume;        // mm^3 (initial; small strain)
+  std::vector<Voigt> strain;         // engineering shear
+  std::vector<Voigt> stress;         // MPa
+  std::vector<Voigt> strainIncrement;// of the current step
+  std::vector<std::uint8_t> material;// index into the scene's materials
+  std::vector<std::int32_t> band;    // index into `bands`, -1 while intact (enriched)
+  std::vector<double> integrity;     // smeared crack only (empty if no smeared material)
+  std::vector<Stencil> stencil;      // shape weights of the current step
+
+  std::vector<BandState> bands;      // side array: one per cracked enriched point
+
+  std::size_t size() const { return position.size(); }
+  void resize(std::size_t n, bool withIntegrity);
+
+  // Memory per particle of the arrays above (bytes), intact and cracked.
+  std::size_t bytesPerParticle() const;
+  static constexpr std::size_t bytesPerBand() { return sizeof(BandState); }  // added when a point cracks
+};
+
+}  // namespace ecm::mpm

@@ -1,0 +1,56 @@
+#pragma once
+// The plain description of an MPM run: grid, materials, bodies, boundary conditions, loads and
+// solver settings. Built in C++ (tests) or by the YAML reader (mpm/scene_yaml.hpp); checked
+// once by validate().
+#include <string>
+#include <vector>
+
+#include "material/material.hpp"
+#include "mpm/boundary.hpp"
+#include "mpm/geometry.hpp"
+#include "mpm/grid.hpp"
+#include "mpm/shape_function.hpp"
+
+namespace ecm::mpm {
+
+enum class UpdateScheme {
+  USF,   // update stress first (strain from v^n of the grid)
+  USL,   // update stress last (strain from v^{n+1})
+  MUSL,  // modified USL: v^{n+1} re-mapped from the updated particle velocities
+};
+const char* toString(UpdateScheme s);
+
+struct Damping {
+  double local = 0.0;    // Cundall: f -= local |f| sign(v) per component, in [0, 1)
+  double viscous = 0.0;  // f -= viscous m v (1/s)
+};
+
+struct SolverSettings {
+  UpdateScheme scheme = UpdateScheme::USL;
+  ShapeFunction shapeFunction = ShapeFunction::Linear;
+  double flip = 1.0;    // PIC/FLIP blend: 1 = FLIP, 0 = PIC
+  double cfl = 0.3;     // dt = cfl * min cell size / max P-wave speed; (0, 1]
+  Damping damping;
+  Vec2 gravity = Vec2::Zero();  // mm/s^2
+  EffectiveSizeRule effectiveSize = EffectiveSizeRule::SquareRoot;  // enriched materials: SquareRoot or Oriented
+  int substepLevels = 4;        // non-converged updates are retried with 2, 4, ... 2^levels sub-steps
+};
+
+struct Scene {
+  std::string name = "scene";
+  Grid grid;
+  double thickness = 1.0;  // mm (plane stress: the plate; plane strain: the slice)
+  std::vector<MaterialParams> materials;
+  std::vector<Body> bodies;
+  int particlesPerCell = 2;  // k: k x k particles per cell
+  std::vector<NodeCondition> conditions;
+  std::vector<Load> loads;
+  SolverSettings solver;
+  double endTime = 0.0;         // s
+  double outputInterval = 0.0;  // s between output steps (0: only the first and last)
+
+  // Throws std::invalid_argument with a message naming what is wrong.
+  void validate() const;
+};
+
+}  // namespace ecm::mpm

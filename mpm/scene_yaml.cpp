@@ -1,0 +1,251 @@
+#include "mpm/scene_yaml.hpp"
+
+#include <map>
+
+#include "io/material_yaml.hpp"
+
+namespace ecm::mpm {
+
+namespace {
+
+using io::InputError;
+using io::Range;
+using io::YamlMap;
+
+int lineOf(const YAML::Node& n, int fallback) {
+  const YAML::Mark m = n.Mark();
+  return m.is_null() || m.line < 0 ? fallback : m.line + 1;
+}
+
+Vec2 vec2(const YamlMap& m, const std::string& key, const Range& r = Range::any()) {
+  const auto v = m.getVector(key, 2, r);
+  return {v[0], v[1]};
+}
+
+// A sequence of [a, b] pairs (polygon vertices, table points, matrix rows).
+std::vector<Vec2> pairs(const YamlMap& m, const std::string& key, std::size_t minCount) {
+  if (!m.has(key)) m.fail(key, "is required");
+  const YAML::Node seq = m.node()[key];
+  const int line = m.line(key);
+  if (!seq.IsSequence() || seq.size() < minCount)
+    m.fail(key, "expected a sequence of at least " + std::to_string(minCount) + " [a, b] pairs");
+  std::vector<Vec2> out;
+  for (std::size_t i = 0; i < seq.size(); ++i) {
+    const YAML::Node p = seq[i];
+    const int l = lineOf(p, line);
+    const std::string where = "key '" + (m.path().empty() ? key : m.path() + "." + key) + "[" + std::to_string(i) + "]'";
+    if (!p.IsSequence() || p.size() != 2) throw InputError(m.file(), l, where + ": expected a pair [a, b]");
+    Vec2 v;
+    for (std::size_t c = 0; c < 2; ++c) {
+      try {
+        v[static_cast<int>(c)] = p[c].as<double>();
+      } catch (const YAML::Exception&) {
+        throw InputError(m.file(), l, where + ": expected numbers");
+      }
+      if (!std::isfinite(v[static_cast<int>(c)])) throw InputError(m.file(), l, where + ": expected finite numbers");
+    }
+    out.push_back(v);
+  }
+  return out;
+}
+
+History readHistory(const YamlMap& m) {
+  const std::string type = m.getEnum("type", {"hold", "linear_ramp", "smooth_ramp", "table"});
+  History h;
+  if (type == "table") {
+    for (const Vec2& p : pairs(m, "points", 1)) {
+      h.times.push_back(p[0]);
+      h.values.push_back(p[1]);
+    }
+    h.kind = HistoryKind::Table;
+  } else {
+    h.value = m.get<double>("value");
+    if (type != "hold") h.rampTime = m.get<double>("time", Range::positive());
+    h.kind = type == "hold" ? HistoryKind::Hold : (type == "linear_ramp" ? HistoryKind::LinearRamp : HistoryKind::SmoothRamp);
+  }
+  try {
+    h.validate();
+  } catch (const std::invalid_argument& e) {
+    m.failHere(e.what());
+  }
+  return h;
+}
+
+Box readBox(const YamlMap& m) {
+  Box b{vec2(m, "min"), vec2(m, "max")};
+  if (!(b.max[0] >= b.min[0] && b.max[1] >= b.min[1])) m.failHere("box needs max >= min in x and y");
+  return b;
+}
+
+Grid readGrid(const YamlMap& m) {
+  Grid g;
+  g.origin = vec2(m, "origin");
+  g.cellSize = vec2(m, "cell_size", Range::positive());
+  const auto cells = m.getVector("cells", 2, Range{1.0, 1e9, true, true});
+  if (cells[0] != std::floor(cells[0]) || cells[1] != std::floor(cells[1])) m.fail("cells", "expected whole numbers");
+  g.cellsX = static_cast<int>(cells[0]);
+  g.cellsY = static_cast<int>(cells[1]);
+  try {
+    g.validate();
+  } catch (const std::invalid_argument& e) {
+    m.failHere(e.what());
+  }
+  return g;
+}
+
+SolverSettings readSolver(const YamlMap& m) {
+  SolverSettings s;
+  const std::string scheme = m.getEnumOr("scheme", {"usf", "usl", "musl"}, "usl");
+  s.scheme = scheme == "usf" ? UpdateScheme::USF : (scheme == "musl" ? UpdateScheme::MUSL : UpdateScheme::USL);
+  const std::string shape = m.getEnumOr("shape_function", {"linear", "ugimp", "bspline2"}, "linear");
+  s.shapeFunction = shape == "ugimp" ? ShapeFunction::UGimp : (shape == "bspline2" ? ShapeFunction::BSpline2 : ShapeFunction::Linear);
+  s.flip = m.getOr<double>("flip", 1.0, Range::closed(0.0, 1.0));
+  s.cfl = m.getOr<double>("cfl", 0.3, Range{0.0, 1.0, false, true});
+  s.effectiveSize = m.getEnumOr("effective_size", {"sqrt", "oriented"}, "sqrt") == "oriented" ? EffectiveSizeRule::Oriented
+                                                                                               : EffectiveSizeRule::SquareRoot;
+  s.damping.local = m.getOr<double>("local_damping", 0.0, Range{0.0, 1.0, true, false});
+  s.damping.viscous = m.getOr<double>("viscous_damping", 0.0, Range::nonNegative());
+  if (m.has("gravity")) s.gravity = vec2(m, "gravity");
+  s.substepLevels = m.getOr<int>("substep_levels", 4, Range::closed(0.0, 12.0));
+  return s;
+}
+
+Body readBody(const YamlMap& m, const std::map<std::string, int>& materials) {
+  Body b;
+  const int shapes = int(m.has("rectangle")) + int(m.has("polygon")) + int(m.has("circle"));
+  if (shapes != 1) m.failHere("a body needs exactly one of rectangle, polygon, circle");
+  if (m.has("rectangle")) {
+    const YamlMap r = m.child("rectangle");
+    b.shape = Shape::rectangle(vec2(r, "min"), vec2(r, "max"));
+  } else if (m.has("circle")) {
+    const YamlMap c = m.child("circle");
+    b.shape = Shape::circle(vec2(c, "center"), c.get<double>("radius", Range::positive()));
+  } else {
+    b.shape = Shape::polygon(pairs(m, "polygon", 3));
+  }
+  try {
+    b.shape.validate();
+  } catch (const std::invalid_argument& e) {
+    m.failHere(e.what());
+  }
+  b.subtract = m.getOr<bool>("subtract", false);
+  if (b.subtract) {
+    m.reject("material", "a subtracting body has no material");
+    m.reject("initial_velocity", "a subtracting body has no particles");
+    return b;
+  }
+  const std::string name = m.get<std::string>("material");
+  const auto it = materials.find(name);
+  if (it == materials.end()) {
+    std::string known;
+    for (const auto& [k, v] : materials) known += (known.empty() ? "" : ", ") + k;
+    m.fail("material", "unknown material '" + name + "' (defined: " + known + ")");
+  }
+  b.material = it->second;
+  if (m.has("initial_velocity")) b.initialVelocity = vec2(m, "initial_velocity");
+  return b;
+}
+
+NodeCondition readCondition(const YamlMap& m, const Grid& grid) {
+  NodeCondition c;
+  c.name = m.get<std::string>("name");
+  c.box = readBox(m.child("box"));
+  bool any = false;
+  const double tol = 1e-9 * std::min(grid.cellSize[0], grid.cellSize[1]);
+  for (int n = 0; n < grid.nodeCount() && !any; ++n) any = c.box.contains(grid.nodePosition(n), tol);
+  if (!any) m.fail("box", "contains no grid node");
+  auto set = [&](int d, Prescribed kind, const History& h, const std::string& key) {
+    auto& k = c.component[static_cast<std::size_t>(d)];
+    if (k.kind != Prescribed::Free) m.fail(key, std::string("component ") + (d ? "y" : "x") + " is prescribed twice");
+    k = {kind, h};
+  };
+  if (m.has("fixed")) {
+    for (const std::string& s : m.scalarSequence<std::string>("fixed")) {
+      if (s != "x" && s != "y") m.fail("fixed", "expected components x and/or y, got '" + s + "'");
+      set(s == "y", Prescribed::Fixed, {}, "fixed");
+    }
+  }
+  for (const auto& [key, kind] : {std::pair{"velocity", Prescribed::Velocity}, std::pair{"displacement", Prescribed::Displacement}}) {
+    if (!m.has(key)) continue;
+    const YamlMap v = m.child(key);
+    bool some = false;
+    for (int d = 0; d < 2; ++d) {
+      const std::string comp = d ? "y" : "x";
+      if (!v.has(comp)) continue;
+      set(d, kind, readHistory(v.child(comp)), key);
+      some = true;
+    }
+    if (!some) {
+      v.finish();  // an unknown component key says more than "nothing given"
+      m.fail(key, "needs a history for x and/or y");
+    }
+  }
+  if (m.has("velocity_field")) {
+    for (const auto& k : c.component)
+      if (k.kind != Prescribed::Free) m.fail("velocity_field", "cannot be combined with fixed, velocity or displacement");
+    const YamlMap f = m.child("velocity_field");
+    const auto rows = pairs(f, "gradient", 2);
+    if (rows.size() != 2) f.fail("gradient", "expected a 2 x 2 matrix [[a, b], [c, d]] (1/s)");
+    AffineVelocity a;
+    a.gradient << rows[0][0], rows[0][1], rows[1][0], rows[1][1];
+    if (f.has("origin")) a.origin = vec2(f, "origin");
+    if (f.has("scale")) a.scale = readHistory(f.child("scale"));
+    c.field = a;
+  }
+  if (!c.field && c.component[0].kind == Prescribed::Free && c.component[1].kind == Prescribed::Free)
+    m.failHere("condition '" + c.name + "' prescribes nothing (give fixed, velocity, displacement or velocity_field)");
+  return c;
+}
+
+Load readLoad(const YamlMap& m) {
+  Load l;
+  l.name = m.get<std::string>("name");
+  l.box = readBox(m.child("box"));
+  l.target = m.getEnumOr("on", {"particles", "nodes"}, "particles") == "nodes" ? LoadTarget::Nodes : LoadTarget::Particles;
+  l.force = vec2(m, "force");
+  if (m.has("history")) l.history = readHistory(m.child("history"));
+  return l;
+}
+
+}  // namespace
+
+Scene readScene(const YamlMap& m) {
+  Scene s;
+  s.name = m.getOr<std::string>("name", std::filesystem::path(m.file()).stem().string());
+  s.grid = readGrid(m.child("grid"));
+  s.thickness = m.getOr<double>("thickness", 1.0, Range::positive());
+  s.particlesPerCell = m.getOr<int>("particles_per_cell", 2, Range::closed(1.0, 8.0));
+
+  std::map<std::string, int> names;
+  for (const YamlMap& mm : m.sequence("materials")) {
+    MaterialParams p = io::readMaterial(mm);
+    if (!(p.density > 0.0)) mm.failHere("material '" + p.name + "': MPM needs density > 0 (t/mm^3)");
+    if (!names.emplace(p.name, static_cast<int>(s.materials.size())).second)
+      mm.failHere("material name '" + p.name + "' is defined twice");
+    if (!s.materials.empty() && p.elastic.hypothesis != s.materials.front().elastic.hypothesis)
+      mm.failHere("material '" + p.name + "': all materials must share plane_stress or plane_strain");
+    s.materials.push_back(std::move(p));
+  }
+  if (s.materials.empty()) m.fail("materials", "needs at least one material");
+  if (s.materials.size() > 255) m.fail("materials", "at most 255 materials");
+  for (const YamlMap& b : m.sequence("bodies")) s.bodies.push_back(readBody(b, names));
+  if (s.bodies.empty()) m.fail("bodies", "needs at least one body");
+  if (m.has("solver")) s.solver = readSolver(m.child("solver"));
+  s.endTime = m.get<double>("end_time", Range::positive());
+  s.outputInterval = m.getOr<double>("output_interval", 0.0, Range::nonNegative());
+  if (m.has("conditions"))
+    for (const YamlMap& c : m.sequence("conditions")) s.conditions.push_back(readCondition(c, s.grid));
+  if (m.has("loads"))
+    for (const YamlMap& l : m.sequence("loads")) s.loads.push_back(readLoad(l));
+  m.finish();
+  try {
+    s.validate();  // whatever the piecewise checks above could not see
+  } catch (const std::invalid_argument& e) {
+    m.failHere(e.what());
+  }
+  return s;
+}
+
+Scene loadSceneFile(const std::filesystem::path& path) { return readScene(io::loadYamlFile(path)); }
+
+}  // namespace ecm::mpm

@@ -1,0 +1,54 @@
+#pragma once
+// Scenes in YAML (the edge: everything is checked here, with FILE:LINE: reason). Format, with
+// units mm, N, MPa, tonne (t), s; density in t/mm^3:
+//
+//   name: tension-block
+//   grid: {origin: [0, 0], cell_size: [10, 10], cells: [10, 12]}   # mm, mm, count
+//   thickness: 1                # mm
+//   particles_per_cell: 2       # k: k x k per cell
+//   materials:                  # inline maps (io/material_yaml.hpp format) or {file: NAME.yaml}
+//     - {file: den-concrete.yaml}
+//   bodies:                     # later bodies override earlier ones
+//     - {rectangle: {min: [0, 0], max: [100, 100]}, material: den-concrete}
+//     - {polygon: [[0, 45], [20, 50], [0, 55]], subtract: true}
+//     - {circle: {center: [50, 50], radius: 5}, subtract: true, initial_velocity: [0, 0]}
+//   solver:                     # all optional
+//     scheme: usl               # usf | usl | musl
+//     shape_function: linear    # linear | ugimp | bspline2
+//     flip: 1.0                 # PIC/FLIP blend (1 = FLIP)
+//     cfl: 0.3                  # (0, 1]
+//     effective_size: sqrt      # sqrt | oriented (enriched materials)
+//     local_damping: 0.0        # Cundall, [0, 1)
+//     viscous_damping: 0.0      # 1/s
+//     gravity: [0, 0]           # mm/s^2
+//     substep_levels: 4         # failed material updates retried with up to 2^levels sub-steps
+//   end_time: 1e-3              # s
+//   output_interval: 1e-5       # s (0: first and last step only)
+//   conditions:                 # on the grid nodes inside a box
+//     - name: base
+//       box: {min: [0, 0], max: [100, 0]}
+//       fixed: [x, y]
+//     - name: top
+//       box: {min: [0, 100], max: [100, 100]}
+//       displacement: {y: {type: smooth_ramp, value: 0.05, time: 1e-3}}   # mm
+//       velocity: {x: {type: hold, value: 0}}                              # mm/s
+//     - name: drive             # or an affine velocity field v = scale(t) G (x - origin)
+//       box: {min: [0, 0], max: [100, 100]}
+//       velocity_field: {gradient: [[1, 0], [0, 0]], origin: [0, 0], scale: {type: hold, value: 1}}
+//   loads:                      # total force spread equally over the set
+//     - {name: pull, box: {min: [0, 95], max: [100, 100]}, on: particles, force: [0, 1000],
+//        history: {type: linear_ramp, value: 1, time: 1e-4}}
+//
+// Histories: {type: hold, value: V} | {type: linear_ramp | smooth_ramp, value: V, time: T}
+//          | {type: table, points: [[t0, v0], [t1, v1], ...]}
+#include <filesystem>
+
+#include "io/yaml_input.hpp"
+#include "mpm/scene.hpp"
+
+namespace ecm::mpm {
+
+Scene readScene(const io::YamlMap& map);
+Scene loadSceneFile(const std::filesystem::path& path);
+
+}  // namespace ecm::mpm

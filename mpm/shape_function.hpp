@@ -1,0 +1,91 @@
+#pragma once
+// Shape functions as tensor products of 1D functions. A particle's stencil stores the 1D
+// weights and derivatives per direction (S = 2 or 3 nodes each): N_ij = wx[i] wy[j],
+// grad N_ij = (gx[i] wy[j], wx[i] gy[j]). Computed once per step, shared by P2G and G2P.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "mpm/grid.hpp"
+
+namespace ecm::mpm {
+
+enum class ShapeFunction {
+  Linear,    // bilinear hat functions, support one cell each side
+  UGimp,     // uniform GIMP: hat convolved with the particle's initial domain (width cell / k)
+  BSpline2,  // quadratic B-spline, support 1.5 cells each side (no boundary modification:
+             // scenes with particles within 1.5 cells of the grid edge are refused)
+};
+
+const char* toString(ShapeFunction f);
+
+// Nodes per direction of a stencil.
+constexpr int supportSize(ShapeFunction f) { return f == ShapeFunction::Linear ? 2 : 3; }
+
+struct Stencil {
+  std::int32_t base = 0;          // node index of the lower-left node of the stencil
+  double wx[3] = {}, wy[3] = {};  // 1D weights
+  double gx[3] = {}, gy[3] = {};  // 1D derivatives (1/mm)
+};
+
+namespace detail {
+
+// One direction. xi: position in cell units from the grid origin; cells: cells in this
+// direction; halfWidth: particle half-size in cell units (uGIMP). Returns false when the
+// stencil would reach outside the grid.
+template <ShapeFunction F>
+inline bool stencil1D(double xi, int cells, double halfWidth, double invH, int& base, double* w, double* g) {
+  if constexpr (F == ShapeFunction::Linear) {
+    if (!(xi >= 0.0 && xi <= cells)) return false;
+    base = std::min(static_cast<int>(xi), cells - 1);
+    const double r = xi - base;
+    w[0] = 1.0 - r, w[1] = r;
+    g[0] = -invH, g[1] = invH;
+    return true;
+  } else if constexpr (F == ShapeFunction::BSpline2) {
+    if (!(xi >= 0.5 && xi < cells - 0.5)) return false;
+    base = static_cast<int>(xi - 0.5);
+    const double r = xi - base;  // distance to node `base`, in [0.5, 1.5)
+    const double a = 1.5 - r, b = r - 1.0, c = r - 0.5;
+    w[0] = 0.5 * a * a, w[1] = 0.75 - b * b, w[2] = 0.5 * c * c;
+    g[0] = -a * invH, g[1] = -2.0 * b * invH, g[2] = c * invH;
+    return true;
+  } else {
+    const double l = halfWidth;
+    if (!(xi - l >= 0.0 && xi + l <= cells) || cells < 2) return false;
+    base = std::clamp(static_cast<int>(std::floor(xi - 0.5)), 0, cells - 2);
+    for (int i = 0; i < 3; ++i) {
+      const double d = xi - (base + i), ad = std::abs(d), s = d < 0.0 ? -1.0 : 1.0;
+      if (ad < l) {
+        w[i] = 1.0 - (d * d + l * l) / (2.0 * l), g[i] = -d / l * invH;
+      } else if (ad <= 1.0 - l) {
+        w[i] = 1.0 - ad, g[i] = -s * invH;
+      } else if (ad < 1.0 + l) {
+        const double q = 1.0 + l - ad;
+        w[i] = q * q / (4.0 * l), g[i] = -s * q / (2.0 * l) * invH;
+      } else {
+        w[i] = 0.0, g[i] = 0.0;
+      }
+    }
+    return true;
+  }
+}
+
+}  // namespace detail
+
+// Fills the stencil of a particle at x; false when the particle (or its uGIMP domain, or its
+// B-spline support) is not inside the grid.
+template <ShapeFunction F>
+inline bool computeStencil(const Grid& grid, const Vec2& invCell, const Vec2& halfWidth, const Vec2& x, Stencil& s) {
+  const double xi = (x[0] - grid.origin[0]) * invCell[0], eta = (x[1] - grid.origin[1]) * invCell[1];
+  int bx = 0, by = 0;
+  if (!detail::stencil1D<F>(xi, grid.cellsX, halfWidth[0], invCell[0], bx, s.wx, s.gx)) return false;
+  if (!detail::stencil1D<F>(eta, grid.cellsY, halfWidth[1], invCell[1], by, s.wy, s.gy)) return false;
+  s.base = by * (grid.cellsX + 1) + bx;
+  return true;
+}
+
+// Runtime dispatch for tests and setup code (inner loops use the template directly).
+bool computeStencil(ShapeFunction f, const Grid& grid, const Vec2& halfWidth, const Vec2& x, Stencil& s);
+
+}  // namespace ecm::mpm

@@ -1,0 +1,116 @@
+#include "mpm/solver.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "mpm/seeding.hpp"
+
+namespace ecm::mpm {
+
+Solver::Solver(Scene scene, int threads)
+    : scene_((scene.validate(), std::move(scene))), threads_(threads > 0 ? threads : omp_get_max_threads()) {
+  const Grid& g = scene_.grid;
+  particles_ = seedParticles(scene_);
+  if (threads <= 0)
+    threads_ = static_cast<int>(std::clamp<std::size_t>(particles_.size() / kParticlesPerThread, 1,
+                                                        static_cast<std::size_t>(threads_)));
+  invCell_ = Vec2(1.0 / g.cellSize[0], 1.0 / g.cellSize[1]);
+  halfWidth_ = Vec2::Constant(0.5 / scene_.particlesPerCell);  // uGIMP half-size in cell units
+  size_ = {scene_.solver.effectiveSize, 0.0, g.cellSize[0], g.cellSize[1]};
+  grid_.resize(g.nodeCount());
+  scratch_.resize(static_cast<std::size_t>(threads_ - 1));
+  for (auto& s : scratch_) s.resize(g.nodeCount());
+
+  materials_.reserve(scene_.materials.size());  // kernels_ point into materials_: no reallocation after this
+  for (const auto& m : scene_.materials) materials_.emplace_back(m);
+  for (const auto& m : materials_) kernels_.push_back({m.params().model, m.stiffness(), m.enriched(), m.smeared()});
+
+  // dt = cfl * min cell size / the largest P-wave speed sqrt(a_11 / rho) of the materials present.
+  std::vector<bool> used(materials_.size(), false);
+  for (const auto id : particles_.material) used[id] = true;
+  double speed = 0.0;
+  for (std::size_t i = 0; i < materials_.size(); ++i)
+    if (used[i]) speed = std::max(speed, std::sqrt(pWaveModulus(scene_.materials[i].elastic) / scene_.materials[i].density));
+  dt_ = scene_.solver.cfl * std::min(g.cellSize[0], g.cellSize[1]) / speed;
+
+  constrained_.assign(static_cast<std::size_t>(g.nodeCount()), 0);
+  const double tol = 1e-9 * std::min(g.cellSize[0], g.cellSize[1]);
+  for (const auto& c : scene_.conditions) {
+    ConditionState s;
+    for (int n = 0; n < g.nodeCount(); ++n)
+      if (c.box.contains(g.nodePosition(n), tol)) s.nodes.push_back(n);
+    if (s.nodes.empty()) throw std::invalid_argument("condition '" + c.name + "': its box contains no grid node");
+    const bool x = c.field || c.component[0].kind != Prescribed::Free, y = c.field || c.component[1].kind != Prescribed::Free;
+    for (const auto n : s.nodes) constrained_[static_cast<std::size_t>(n)] |= static_cast<std::uint8_t>((x ? 1 : 0) | (y ? 2 : 0));
+    conditions_.push_back(std::move(s));
+  }
+  for (const auto& l : scene_.loads) {
+    LoadState s;
+    if (l.target == LoadTarget::Nodes) {
+      for (int n = 0; n < g.nodeCount(); ++n)
+        if (l.box.contains(g.nodePosition(n), tol)) s.members.push_back(n);
+    } else {
+      for (std::size_t p = 0; p < particles_.size(); ++p)
+        if (l.box.contains(particles_.position[p], tol)) s.members.push_back(static_cast<std::int32_t>(p));
+    }
+    if (s.members.empty())
+      throw std::invalid_argument("load '" + l.name + "': its box contains no " +
+                                  (l.target == LoadTarget::Nodes ? "grid node" : "particle"));
+    loads_.push_back(std::move(s));
+  }
+}
+
+void Solver::advance() {
+  switch (scene_.solver.scheme) {
+    case UpdateScheme::USF:
+      particleToGrid(kStencils | kMassMomentum);
+      gridVelocities();
+      computeStrainIncrements();
+      updateStresses();
+      particleToGrid(kForces);
+      updateGrid();
+      gridToParticle(false);
+      break;
+    case UpdateScheme::USL:
+      particleToGrid(kStencils | kMassMomentum | kForces);
+      updateGrid();
+      gridToParticle(true);
+      updateStresses();
+      break;
+    case UpdateScheme::MUSL:
+      particleToGrid(kStencils | kMassMomentum | kForces);
+      updateGrid();
+      gridToParticle(false);
+      particleToGrid(kMassMomentum);
+      gridVelocities();
+      computeStrainIncrements();
+      updateStresses();
+      break;
+  }
+  time_ += dt_;
+  ++step_;
+}
+
+Energies Solver::energies() const {
+  const Particles& p = particles_;
+  double kinetic = 0.0, strain = 0.0;
+  const auto n = static_cast<long>(p.size());
+#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : kinetic, strain)
+  for (long i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    kinetic += 0.5 * p.mass[k] * p.velocity[k].squaredNorm();
+    strain += 0.5 * p.volume[k] * p.stress[k].dot(p.strain[k]);
+  }
+  return {kinetic, strain, externalWork_, dissipated_, damping_};
+}
+
+double Solver::damage(std::size_t i) const {
+  if (particles_.band[i] >= 0) return particles_.bands[static_cast<std::size_t>(particles_.band[i])].damage();
+  if (!particles_.integrity.empty()) return 1.0 - particles_.integrity[i];
+  return 0.0;
+}
+
+}  // namespace ecm::mpm

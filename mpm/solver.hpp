@@ -1,0 +1,113 @@
+#pragma once
+// The explicit MPM solver: particles and grid as arrays, one step = the phases in order.
+// Each phase is a public function so that it can be tested on its own.
+#include <memory>
+#include <vector>
+
+#include "material/material.hpp"
+#include "mpm/errors.hpp"
+#include "mpm/grid.hpp"
+#include "mpm/particles.hpp"
+#include "mpm/scene.hpp"
+
+namespace ecm::mpm {
+
+// What particle-to-grid scatters (bit flags).
+enum Transfer : unsigned {
+  kStencils = 1u,      // recompute the shape weights from the positions first
+  kMassMomentum = 2u,  // mass and momentum
+  kForces = 4u,        // internal and external forces
+};
+
+// The runtime state of a node condition: its nodes, the reaction of the step and the
+// prescribed displacement so far.
+struct ConditionState {
+  std::vector<std::int32_t> nodes;
+  Vec2 reaction = Vec2::Zero();      // N: sum over the nodes of the constraint forces of the last step
+  Vec2 displacement = Vec2::Zero();  // mm: integral of the prescribed velocity (of the field at its origin)
+};
+
+struct LoadState {
+  std::vector<std::int32_t> members;  // nodes or particles
+  Vec2 applied = Vec2::Zero();        // N: the total force applied in the last step
+};
+
+// Energies (N mm = mJ). Kinetic and strain are of the present state; the others accumulate.
+struct Energies {
+  double kinetic = 0.0;
+  double strain = 0.0;        // sum of V sigma.eps / 2 (recoverable for elastic and secant unloading)
+  double externalWork = 0.0;  // loads, gravity and reactions
+  double dissipated = 0.0;    // by the materials (damage)
+  double damping = 0.0;       // removed by local and viscous damping
+};
+
+// Per material, what the stress update needs without a virtual call.
+struct MaterialKernel {
+  ModelKind kind = ModelKind::LinearElastic;
+  Tangent stiffness = Tangent::Zero();
+  const EnrichedBand* enriched = nullptr;
+  const SmearedCrack* smeared = nullptr;
+};
+
+class Solver {
+ public:
+  // Validates the scene and seeds the particles. threads > 0: exactly that many; 0: automatic,
+  // the OpenMP default but at most one thread per kParticlesPerThread particles (for small
+  // scenes fork/join and barriers cost more than they save).
+  explicit Solver(Scene scene, int threads = 0);
+  static constexpr std::size_t kParticlesPerThread = 4096;
+
+  // One explicit step: the phases of the scene's update scheme in order.
+  void advance();
+
+  // --- the phases ---
+  void particleToGrid(unsigned transfer);
+  void updateGrid();          // v^n = p/m, forces and damping -> v^{n+1}, conditions, reactions
+  void gridVelocities();      // v = p/m with the velocity conditions (USF strain, MUSL remap)
+  void gridToParticle(bool withStrainIncrements);  // velocities (PIC/FLIP), positions, optionally strain increments
+  void computeStrainIncrements();  // from the grid velocities
+  void updateStresses();      // the material update of every particle (sub-stepping on failure)
+
+  // --- state ---
+  const Scene& scene() const { return scene_; }
+  Particles& particles() { return particles_; }
+  const Particles& particles() const { return particles_; }
+  const GridFields& grid() const { return grid_; }
+  const std::vector<ConditionState>& conditions() const { return conditions_; }
+  const std::vector<LoadState>& loads() const { return loads_; }
+  const std::vector<Material>& materials() const { return materials_; }
+  double time() const { return time_; }
+  long step() const { return step_; }
+  double timeStep() const { return dt_; }
+  void setTimeStep(double dt) { dt_ = dt; }  // for tests; the constructor sets it from the CFL number
+  int threads() const { return threads_; }
+  Energies energies() const;
+  double damage(std::size_t p) const;          // 0 intact .. 1 fully damaged
+  EffectiveSize effectiveSize() const { return size_; }
+  long substepped() const { return substepped_; }  // material updates that needed sub-stepping so far
+
+ private:
+  Scene scene_;
+  int threads_;
+  double dt_ = 0.0;
+  double time_ = 0.0;
+  long step_ = 0;
+  Vec2 invCell_, halfWidth_;
+  EffectiveSize size_;
+  Particles particles_;
+  GridFields grid_;
+  std::vector<GridAccumulator> scratch_;  // one per extra thread
+  std::vector<Material> materials_;
+  std::vector<MaterialKernel> kernels_;
+  std::vector<ConditionState> conditions_;
+  std::vector<std::uint8_t> constrained_;  // per node: bit 0 x, bit 1 y is prescribed (no damping there)
+  std::vector<LoadState> loads_;
+  double externalWork_ = 0.0, dissipated_ = 0.0, damping_ = 0.0;
+  long substepped_ = 0;
+
+  void applyVelocityConditions(bool reactions);
+  void addLoads();
+  [[noreturn]] void throwLeftGrid(std::size_t p) const;
+};
+
+}  // namespace ecm::mpm

@@ -1,0 +1,150 @@
+// The stress phase: every particle's material update with its strain increment. Elastic points
+// take the closed form inline; enriched points call updateIntact / updateCracked on the side
+// array of band states; failed updates are retried with 2, 4, ... sub-steps.
+#include <omp.h>
+
+#include <algorithm>
+#include <limits>
+#include <optional>
+#include <sstream>
+
+#include "mpm/solver.hpp"
+
+namespace ecm::mpm {
+
+namespace {
+
+struct Onset {
+  std::size_t particle;
+  BandState band;
+};
+
+struct Failure {
+  std::size_t particle = std::numeric_limits<std::size_t>::max();
+  UpdateResult result;
+  std::string what;  // an exception from the material (e.g. H <= h at onset)
+};
+
+// One enriched point: the increment in one go, else in 2^level equal sub-steps.
+UpdateResult updateEnriched(const EnrichedBand& m, Voigt& strain, BandState* band, const Voigt& d,
+                            const EffectiveSize& size, std::optional<BandState>& onset, int levels, long& retries) {
+  UpdateResult r = band ? m.updateCracked(*band, strain, d) : m.updateIntact(strain, d, size, onset);
+  if (r.converged()) return r;
+  ++retries;
+  for (int level = 1; level <= levels; ++level) {
+    const int n = 1 << level;
+    const Voigt sub = d / n;
+    Voigt s = strain;
+    std::optional<BandState> b;
+    if (band) b = *band;
+    double dissipation = 0.0;
+    bool ok = true;
+    for (int i = 0; i < n && ok; ++i) {
+      r = b ? m.updateCracked(*b, s, sub) : m.updateIntact(s, sub, size, b);
+      ok = r.converged();
+      dissipation += r.dissipation;
+    }
+    if (!ok) continue;
+    strain = s;
+    if (band)
+      *band = *b;
+    else
+      onset = b;
+    r.dissipation = dissipation;
+    return r;
+  }
+  return r;
+}
+
+}  // namespace
+
+void Solver::updateStresses() {
+  Particles& p = particles_;
+  const std::size_t count = p.size();
+  const int levels = scene_.solver.substepLevels;
+  double dissipated = 0.0;
+  long retries = 0;
+  Failure failure;
+  std::vector<std::vector<Onset>> onsets(static_cast<std::size_t>(threads_));
+#pragma omp parallel num_threads(threads_) reduction(+ : dissipated, retries)
+  {
+    std::vector<Onset>& mine = onsets[static_cast<std::size_t>(omp_get_thread_num())];
+    // Dynamic: cracked points cost ~100 intact ones and cluster in space. Each point's update
+    // is independent of the others, so the schedule does not change any result.
+#pragma omp for schedule(dynamic, 512) nowait
+    for (std::size_t i = 0; i < count; ++i) {
+      const MaterialKernel& k = kernels_[p.material[i]];
+      const Voigt& d = p.strainIncrement[i];
+      UpdateResult r;
+      std::string what;
+      switch (k.kind) {
+        case ModelKind::LinearElastic:
+          p.strain[i] += d;
+          p.stress[i] = k.stiffness * p.strain[i];
+          break;
+        case ModelKind::SmearedCrack: {
+          SmearedCrack::State s{p.strain[i], p.integrity[i]};
+          r = k.smeared->update(s, d);
+          p.strain[i] = s.strain;
+          p.integrity[i] = s.integrity;
+          p.stress[i] = r.stress;
+          dissipated += r.dissipation * p.volume[i];
+          break;
+        }
+        case ModelKind::Enriched: {
+          const std::int32_t bi = p.band[i];
+          std::optional<BandState> onset;
+          try {
+            r = updateEnriched(*k.enriched, p.strain[i], bi >= 0 ? &p.bands[static_cast<std::size_t>(bi)] : nullptr, d,
+                               size_, onset, levels, retries);
+          } catch (const std::exception& ex) {
+            r.status = UpdateStatus::NotConverged;
+            what = ex.what();
+          }
+          if (r.converged()) {
+            p.stress[i] = r.stress;
+            dissipated += r.dissipation * p.volume[i];
+            if (onset) mine.push_back({i, *onset});
+          }
+          break;
+        }
+      }
+      if (!r.converged() || !p.stress[i].allFinite()) {
+#pragma omp critical(ecm_mpm_failure)
+        if (i < failure.particle) {
+          failure.particle = i;
+          failure.result = r;
+          failure.what = what;
+        }
+      }
+    }
+  }
+  // New bands in particle order, so that indices do not depend on the thread count.
+  std::vector<Onset> all;
+  for (auto& o : onsets) all.insert(all.end(), o.begin(), o.end());
+  std::sort(all.begin(), all.end(), [](const Onset& a, const Onset& b) { return a.particle < b.particle; });
+  for (const Onset& o : all) {
+    p.band[o.particle] = static_cast<std::int32_t>(p.bands.size());
+    p.bands.push_back(o.band);
+  }
+  dissipated_ += dissipated;
+  substepped_ += retries;
+  if (failure.particle != std::numeric_limits<std::size_t>::max()) {
+    const std::size_t i = failure.particle;
+    std::ostringstream msg;
+    msg << "step " << step_ + 1 << ": particle " << i << " at (" << p.position[i][0] << ", " << p.position[i][1]
+        << ") mm: ";
+    FailureKind kind = FailureKind::MaterialFailure;
+    if (failure.result.converged()) {
+      kind = FailureKind::NotFinite;
+      msg << "non-finite stress";
+    } else {
+      msg << "material update " << toString(failure.result.status) << " after " << (1 << levels)
+          << " sub-steps, residual " << failure.result.residual << " MPa";
+      if (!failure.what.empty()) msg << " (" << failure.what << ")";
+    }
+    throw SimulationError(kind, step_ + 1, i, p.position[i], msg.str(), failure.result.status, failure.result.residual);
+  }
+}
+
+}  // namespace ecm::mpm

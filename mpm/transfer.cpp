@@ -1,0 +1,255 @@
+// Particle-to-grid and grid-to-particle transfers. Each thread scatters a fixed contiguous range
+// of particles into its own grid buffer (thread 0 straight into the grid); the buffers are then
+// summed node by node in thread order. No locks; a node only sees a different summation order
+// when particles of two ranges share it.
+#include <omp.h>
+
+#include <algorithm>
+#include <limits>
+#include <sstream>
+
+#include "mpm/solver.hpp"
+
+namespace ecm::mpm {
+
+namespace {
+
+struct ScatterTarget {
+  double* mass;
+  Vec2* momentum;
+  Vec2* force;
+  Vec2* externalForce;
+};
+
+constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
+
+// The particle range of thread t of n (a fixed partition, independent of scheduling).
+std::pair<std::size_t, std::size_t> range(std::size_t count, int t, int n) {
+  return {count * static_cast<std::size_t>(t) / static_cast<std::size_t>(n),
+          count * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(n)};
+}
+
+template <ShapeFunction F, bool Stencils, bool MassMomentum, bool Forces>
+std::size_t scatter(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, Particles& p, std::size_t begin,
+                    std::size_t end, const Vec2& gravity, ScatterTarget out) {
+  constexpr int S = supportSize(F);
+  const int nx = g.nodesX();
+  const bool withGravity = Forces && (gravity[0] != 0.0 || gravity[1] != 0.0);
+  for (std::size_t i = begin; i < end; ++i) {
+    Stencil& s = p.stencil[i];
+    if constexpr (Stencils)
+      if (!computeStencil<F>(g, invCell, halfWidth, p.position[i], s)) return i;
+    const double m = p.mass[i];
+    const Vec2 mv = m * p.velocity[i];
+    const double v = p.volume[i];
+    const Voigt& sig = p.stress[i];
+    const double sxx = v * sig[0], syy = v * sig[1], sxy = v * sig[2];
+    const Vec2 mg = m * gravity;
+    for (int j = 0; j < S; ++j) {
+      const int row = s.base + j * nx;
+      for (int k = 0; k < S; ++k) {
+        const int n = row + k;
+        const double w = s.wx[k] * s.wy[j];
+        if constexpr (MassMomentum) {
+          out.mass[n] += w * m;
+          out.momentum[n] += w * mv;
+        }
+        if constexpr (Forces) {
+          const double gx = s.gx[k] * s.wy[j], gy = s.wx[k] * s.gy[j];
+          out.force[n] -= Vec2(sxx * gx + sxy * gy, sxy * gx + syy * gy);
+          if (withGravity) out.externalForce[n] += w * mg;
+        }
+      }
+    }
+  }
+  return kNone;
+}
+
+using ScatterFn = std::size_t (*)(const Grid&, const Vec2&, const Vec2&, Particles&, std::size_t, std::size_t,
+                                  const Vec2&, ScatterTarget);
+
+template <ShapeFunction F>
+ScatterFn scatterFor(unsigned what) {
+  const bool st = what & kStencils, mm = what & kMassMomentum, fo = what & kForces;
+  if (st && mm && fo) return scatter<F, true, true, true>;
+  if (st && mm) return scatter<F, true, true, false>;
+  if (mm && fo) return scatter<F, false, true, true>;
+  if (mm) return scatter<F, false, true, false>;
+  if (st && fo) return scatter<F, true, false, true>;
+  if (fo) return scatter<F, false, false, true>;
+  return scatter<F, true, false, false>;
+}
+
+ScatterFn scatterFor(ShapeFunction f, unsigned what) {
+  switch (f) {
+    case ShapeFunction::Linear: return scatterFor<ShapeFunction::Linear>(what);
+    case ShapeFunction::UGimp: return scatterFor<ShapeFunction::UGimp>(what);
+    case ShapeFunction::BSpline2: return scatterFor<ShapeFunction::BSpline2>(what);
+  }
+  return nullptr;
+}
+
+void zero(ScatterTarget t, int nodes, unsigned what) {
+  const auto n = static_cast<std::size_t>(nodes);
+  if (what & kMassMomentum) {
+    std::fill(t.mass, t.mass + n, 0.0);
+    std::fill(t.momentum, t.momentum + n, Vec2::Zero());
+  }
+  if (what & kForces) {
+    std::fill(t.force, t.force + n, Vec2::Zero());
+    std::fill(t.externalForce, t.externalForce + n, Vec2::Zero());
+  }
+}
+
+template <int S, bool WithStrain>
+std::size_t gather(const Grid& g, const GridFields& grid, Particles& p, std::size_t begin, std::size_t end, double dt,
+                   double flip) {
+  const int nx = g.nodesX();
+  const double pic = 1.0 - flip;
+  std::size_t bad = kNone;
+  for (std::size_t i = begin; i < end; ++i) {
+    const Stencil& s = p.stencil[i];
+    Vec2 v = Vec2::Zero(), dv = Vec2::Zero();
+    double lxx = 0.0, lxy = 0.0, lyx = 0.0, lyy = 0.0;
+    for (int j = 0; j < S; ++j) {
+      const int row = s.base + j * nx;
+      for (int k = 0; k < S; ++k) {
+        const int n = row + k;
+        const double w = s.wx[k] * s.wy[j];
+        const Vec2& vn = grid.velocity[static_cast<std::size_t>(n)];
+        v += w * vn;
+        dv += w * grid.velocityChange[static_cast<std::size_t>(n)];
+        if constexpr (WithStrain) {
+          const double gx = s.gx[k] * s.wy[j], gy = s.wx[k] * s.gy[j];
+          lxx += vn[0] * gx, lxy += vn[0] * gy, lyx += vn[1] * gx, lyy += vn[1] * gy;
+        }
+      }
+    }
+    Vec2& vp = p.velocity[i];
+    vp = flip * (vp + dv) + pic * v;
+    p.position[i] += dt * v;
+    p.displacement[i] += dt * v;
+    if constexpr (WithStrain) p.strainIncrement[i] = Voigt(dt * lxx, dt * lyy, dt * (lxy + lyx));
+    if (bad == kNone && !(vp.allFinite() && p.position[i].allFinite())) bad = i;
+  }
+  return bad;
+}
+
+template <int S>
+void strainIncrements(const Grid& g, const GridFields& grid, Particles& p, std::size_t begin, std::size_t end,
+                      double dt) {
+  const int nx = g.nodesX();
+  for (std::size_t i = begin; i < end; ++i) {
+    const Stencil& s = p.stencil[i];
+    double lxx = 0.0, lxy = 0.0, lyx = 0.0, lyy = 0.0;
+    for (int j = 0; j < S; ++j) {
+      const int row = s.base + j * nx;
+      for (int k = 0; k < S; ++k) {
+        const Vec2& vn = grid.velocity[static_cast<std::size_t>(row + k)];
+        const double gx = s.gx[k] * s.wy[j], gy = s.wx[k] * s.gy[j];
+        lxx += vn[0] * gx, lxy += vn[0] * gy, lyx += vn[1] * gx, lyy += vn[1] * gy;
+      }
+    }
+    p.strainIncrement[i] = Voigt(dt * lxx, dt * lyy, dt * (lxy + lyx));
+  }
+}
+
+}  // namespace
+
+void Solver::particleToGrid(unsigned what) {
+  const ScatterFn fn = scatterFor(scene_.solver.shapeFunction, what);
+  const int nodes = scene_.grid.nodeCount();
+  const std::size_t count = particles_.size();
+  std::size_t bad = kNone;
+  int used = 1;
+#pragma omp parallel num_threads(threads_)
+  {
+    const int t = omp_get_thread_num(), n = omp_get_num_threads();
+#pragma omp single
+    used = n;
+    ScatterTarget target{grid_.mass.data(), grid_.momentum.data(), grid_.force.data(), grid_.externalForce.data()};
+    if (t > 0) {
+      GridAccumulator& a = scratch_[static_cast<std::size_t>(t - 1)];
+      target = {a.mass.data(), a.momentum.data(), a.force.data(), a.externalForce.data()};
+    }
+    zero(target, nodes, what);
+    const auto [b, e] = range(count, t, n);
+    const std::size_t mine = fn(scene_.grid, invCell_, halfWidth_, particles_, b, e, scene_.solver.gravity, target);
+    if (mine != kNone) {
+#pragma omp critical(ecm_mpm_failure)
+      bad = std::min(bad, mine);
+    }
+  }
+  if (bad != kNone) throwLeftGrid(bad);
+  if (used > 1) {
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (int node = 0; node < nodes; ++node) {
+      const auto k = static_cast<std::size_t>(node);
+      for (int t = 1; t < used; ++t) {
+        const GridAccumulator& a = scratch_[static_cast<std::size_t>(t - 1)];
+        if (what & kMassMomentum) {
+          grid_.mass[k] += a.mass[k];
+          grid_.momentum[k] += a.momentum[k];
+        }
+        if (what & kForces) {
+          grid_.force[k] += a.force[k];
+          grid_.externalForce[k] += a.externalForce[k];
+        }
+      }
+    }
+  }
+  if (what & kForces) addLoads();
+}
+
+void Solver::gridToParticle(bool withStrainIncrements) {
+  const std::size_t count = particles_.size();
+  const bool linear = scene_.solver.shapeFunction == ShapeFunction::Linear;
+  std::size_t bad = kNone;
+#pragma omp parallel num_threads(threads_)
+  {
+    const auto [b, e] = range(count, omp_get_thread_num(), omp_get_num_threads());
+    const double flip = scene_.solver.flip;
+    std::size_t mine;
+    if (linear)
+      mine = withStrainIncrements ? gather<2, true>(scene_.grid, grid_, particles_, b, e, dt_, flip)
+                                  : gather<2, false>(scene_.grid, grid_, particles_, b, e, dt_, flip);
+    else
+      mine = withStrainIncrements ? gather<3, true>(scene_.grid, grid_, particles_, b, e, dt_, flip)
+                                  : gather<3, false>(scene_.grid, grid_, particles_, b, e, dt_, flip);
+    if (mine != kNone) {
+#pragma omp critical(ecm_mpm_failure)
+      bad = std::min(bad, mine);
+    }
+  }
+  if (bad != kNone) {
+    std::ostringstream msg;
+    msg << "step " << step_ + 1 << ": particle " << bad << " has a non-finite velocity or position (velocity ("
+        << particles_.velocity[bad][0] << ", " << particles_.velocity[bad][1] << ") mm/s)";
+    throw SimulationError(FailureKind::NotFinite, step_ + 1, bad, particles_.position[bad], msg.str());
+  }
+}
+
+void Solver::computeStrainIncrements() {
+  const std::size_t count = particles_.size();
+  const bool linear = scene_.solver.shapeFunction == ShapeFunction::Linear;
+#pragma omp parallel num_threads(threads_)
+  {
+    const auto [b, e] = range(count, omp_get_thread_num(), omp_get_num_threads());
+    if (linear)
+      strainIncrements<2>(scene_.grid, grid_, particles_, b, e, dt_);
+    else
+      strainIncrements<3>(scene_.grid, grid_, particles_, b, e, dt_);
+  }
+}
+
+void Solver::throwLeftGrid(std::size_t p) const {
+  const Vec2& x = particles_.position[p];
+  std::ostringstream msg;
+  const Vec2 hi = scene_.grid.origin + scene_.grid.extent();
+  msg << "step " << step_ << ": particle " << p << " at (" << x[0] << ", " << x[1] << ") mm left the grid ["
+      << scene_.grid.origin[0] << ", " << hi[0] << "] x [" << scene_.grid.origin[1] << ", " << hi[1] << "] mm";
+  if (scene_.solver.shapeFunction != ShapeFunction::Linear) msg << " (or its " << toString(scene_.solver.shapeFunction) << " support did)";
+  throw SimulationError(FailureKind::LeftGrid, step_, p, x, msg.str());
+}
+
+}  // namespace ecm::mpm

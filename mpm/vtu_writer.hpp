@@ -1,0 +1,31 @@
+#pragma once
+// Particle snapshots for ParaView: one ASCII .vtu per output step (points as vertex cells) and
+// a .pvd index listing them with their times. Fields: displacement, velocity, stress, damage,
+// crack normal, jump and normal opening, material id, cracked flag.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mpm/solver.hpp"
+
+namespace ecm::mpm {
+
+// Writes the solver's particles to `path` (atomically: a reader never sees half a file).
+void writeVtu(const Solver& solver, const std::filesystem::path& path);
+
+// The .pvd collection of a run; add() writes a snapshot and rewrites the index.
+class VtuSeries {
+ public:
+  // Snapshots go to DIR/particles_NNNNN.vtu, the index to DIR/particles.pvd.
+  explicit VtuSeries(std::filesystem::path dir, std::string stem = "particles");
+  void add(const Solver& solver);
+  std::size_t size() const { return entries_.size(); }
+  std::filesystem::path indexPath() const { return dir_ / (stem_ + ".pvd"); }
+
+ private:
+  std::filesystem::path dir_;
+  std::string stem_;
+  std::vector<std::pair<double, std::string>> entries_;  // time (s), file name
+};
+
+}  // namespace ecm::mpm

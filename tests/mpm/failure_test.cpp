@@ -1,0 +1,103 @@
+// Failures are loud: a particle leaving the grid, a NaN, a material update that does not
+// converge even after sub-stepping, and invalid scenes all stop with a message that names them.
+#include <gtest/gtest.h>
+
+#include "test_scenes.hpp"
+
+namespace ecm::mpm::test {
+namespace {
+
+bool contains(const std::string& s, const std::string& needle) { return s.find(needle) != std::string::npos; }
+
+TEST(Failure, ParticleLeavingTheGridIsReportedWithIdPositionAndStep) {
+  Scene s;
+  s.grid = {Vec2::Zero(), Vec2(10.0, 10.0), 10, 4};
+  s.materials = {elasticMaterial()};
+  s.bodies = {{Shape::rectangle(Vec2(60.0, 10.0), Vec2(90.0, 30.0)), 0, false, Vec2(2e5, 0.0)}};  // 200 m/s to +x
+  Solver solver(s, 1);
+  try {
+    for (int n = 0; n < 10000; ++n) solver.advance();
+    FAIL() << "no failure reported";
+  } catch (const SimulationError& e) {
+    EXPECT_EQ(e.kind, FailureKind::LeftGrid);
+    EXPECT_GT(e.position[0], 100.0);
+    EXPECT_GT(e.step, 10);
+    EXPECT_EQ(e.step, solver.step());
+    EXPECT_GT(solver.particles().position[e.particle][0], 100.0);
+    EXPECT_TRUE(contains(e.what(), "particle " + std::to_string(e.particle))) << e.what();
+    EXPECT_TRUE(contains(e.what(), "left the grid")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "step " + std::to_string(e.step))) << e.what();
+  }
+}
+
+TEST(Failure, NanIsReportedWithStepAndParticle) {
+  Solver solver(tensionBlock(), 1);
+  solver.advance();
+  solver.particles().velocity[7] = Vec2(NAN, 0.0);
+  try {
+    solver.advance();
+    FAIL() << "no failure reported";
+  } catch (const SimulationError& e) {
+    EXPECT_EQ(e.kind, FailureKind::NotFinite);
+    EXPECT_EQ(e.step, 2);
+    EXPECT_TRUE(contains(e.what(), "step 2: particle ")) << e.what();
+  }
+}
+
+TEST(Failure, MaterialUpdateThatCannotConvergeStopsWithStatusAndResidual) {
+  // Cells of 300 mm give H = 300 mm beyond the snap-back size h (E + E_p) / E_p = 195.5 mm:
+  // no strain-controlled equilibrium exists after onset, sub-stepping cannot help.
+  Scene s;
+  s.grid = {Vec2::Zero(), Vec2(300.0, 300.0), 3, 3};
+  s.materials = {paperConcrete()};
+  s.bodies = {{Shape::rectangle(Vec2(300.0, 300.0), Vec2(600.0, 600.0)), 0, false, Vec2::Zero()}};
+  NodeCondition all;
+  all.name = "all";
+  all.box = {Vec2(-1.0, -1.0), Vec2(1000.0, 1000.0)};
+  Mat2 g = Mat2::Zero();
+  g(0, 0) = 20.0;
+  all.field = AffineVelocity{g, Vec2(450.0, 450.0), History::hold(1.0)};
+  s.conditions = {all};
+  Solver solver(s, 1);
+  try {
+    for (int n = 0; n < 100000; ++n) solver.advance();
+    FAIL() << "no failure reported";
+  } catch (const SimulationError& e) {
+    EXPECT_EQ(e.kind, FailureKind::MaterialFailure);
+    EXPECT_NE(e.status, UpdateStatus::Converged);
+    EXPECT_TRUE(contains(e.what(), "particle " + std::to_string(e.particle))) << e.what();
+    EXPECT_TRUE(contains(e.what(), toString(e.status))) << e.what();
+    EXPECT_TRUE(contains(e.what(), "residual")) << e.what();
+    EXPECT_TRUE(contains(e.what(), "16 sub-steps")) << e.what();
+    std::printf("[ failure ] %s\n", e.what());
+  }
+}
+
+TEST(Failure, InvalidScenesAreRefusedWithAReason) {
+  auto message = [](const Scene& s) {
+    try {
+      Solver solver(s, 1);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("nothing thrown");
+  };
+  Scene s = tensionBlock();
+  s.solver.cfl = 1.2;
+  EXPECT_TRUE(contains(message(s), "CFL")) << message(s);
+  s = tensionBlock();
+  s.solver.shapeFunction = ShapeFunction::BSpline2;
+  EXPECT_TRUE(contains(message(s), "within 1.5 cells of the grid edge")) << message(s);
+  s = tensionBlock();
+  s.materials[0].density = 0.0;
+  EXPECT_TRUE(contains(message(s), "density")) << message(s);
+  s = tensionBlock();
+  s.conditions[0].box = {Vec2(-50.0, -50.0), Vec2(-40.0, -40.0)};
+  EXPECT_TRUE(contains(message(s), "contains no grid node")) << message(s);
+  s = tensionBlock();
+  s.loads[0].history = History::smoothRamp(1.0, -1.0);
+  EXPECT_TRUE(contains(message(s), "ramp time")) << message(s);
+}
+
+}  // namespace
+}  // namespace ecm::mpm::test

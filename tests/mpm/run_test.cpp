@@ -1,0 +1,73 @@
+// The output folder of a run: history.csv, summary.json, VTU snapshots with a .pvd index; and
+// a failed run still leaves readable outputs and a summary saying why.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "../io/temp_dir.hpp"
+#include "io/csv_reader.hpp"
+#include "mpm/run.hpp"
+#include "mpm/vtu_writer.hpp"
+#include "test_scenes.hpp"
+
+namespace ecm::mpm::test {
+namespace {
+
+using ecm::test::readFile;
+using ecm::test::TempDir;
+
+TEST(Run, WritesHistorySummarySnapshots) {
+  TempDir tmp;
+  Scene s = tensionBlock();
+  s.endTime = 1e-4;
+  s.outputInterval = 2e-5;
+  RunOptions o;
+  o.outputDir = tmp.path() / "out";
+  o.plot = false;
+  o.progress = false;
+  const RunResult r = runScene(s, o);
+  ASSERT_TRUE(r.completed) << r.error;
+  const io::CsvTable h = io::readCsv(o.outputDir / "history.csv");
+  EXPECT_EQ(h.header, historyColumns(s));
+  EXPECT_EQ(h.rows.size(), 6u);  // t = 0, 2e-5, ..., 1e-4
+  EXPECT_NEAR(h.rows.back()[0], 1e-4, 1e-6);
+  const auto j = nlohmann::json::parse(readFile(o.outputDir / "summary.json"));
+  for (const char* key : {"peak_load", "wall_time_s", "steps", "particles", "bytes_per_particle_uncracked",
+                          "bytes_per_particle_cracked"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["status"], "completed");
+  EXPECT_EQ(j["particles"].get<std::size_t>(), r.particles);
+  EXPECT_LE(j["bytes_per_particle_uncracked"].get<int>(), 300);
+  const std::string pvd = readFile(o.outputDir / "particles.pvd");
+  EXPECT_NE(pvd.find("particles_00005.vtu"), std::string::npos);
+  const std::string vtu = readFile(o.outputDir / "particles_00005.vtu");
+  for (const char* field : {"displacement", "stress", "damage", "crack_normal", "opening", "material", "cracked"})
+    EXPECT_NE(vtu.find(std::string("Name=\"") + field + "\""), std::string::npos) << field;
+  EXPECT_NE(vtu.find("NumberOfPoints=\"" + std::to_string(r.particles) + "\""), std::string::npos);
+}
+
+TEST(Run, FailureKeepsOutputsReadableAndExplainsInSummary) {
+  TempDir tmp;
+  Scene s;
+  s.grid = {Vec2::Zero(), Vec2(10.0, 10.0), 10, 4};
+  s.materials = {elasticMaterial()};
+  s.bodies = {{Shape::rectangle(Vec2(60.0, 10.0), Vec2(90.0, 30.0)), 0, false, Vec2(2e5, 0.0)}};
+  s.endTime = 1e-3;
+  s.outputInterval = 1e-5;
+  RunOptions o;
+  o.outputDir = tmp.path() / "out";
+  o.progress = false;
+  o.plot = false;
+  const RunResult r = runScene(s, o);
+  EXPECT_FALSE(r.completed);
+  EXPECT_NE(r.error.find("left the grid"), std::string::npos) << r.error;
+  const io::CsvTable h = io::readCsv(o.outputDir / "history.csv");
+  EXPECT_GE(h.rows.size(), 2u);
+  const auto j = nlohmann::json::parse(readFile(o.outputDir / "summary.json"));
+  EXPECT_EQ(j["status"], "failed");
+  EXPECT_NE(j["error"].get<std::string>().find("left the grid"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ecm::mpm::test

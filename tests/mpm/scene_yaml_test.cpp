@@ -1,0 +1,105 @@
+// The YAML scene reader: the shipped scenes load; unknown keys, missing keys and bad values are
+// refused with FILE:LINE: reason.
+#include <gtest/gtest.h>
+
+#include "../io/temp_dir.hpp"
+#include "mpm/scene_yaml.hpp"
+
+namespace ecm::mpm::test {
+namespace {
+
+using ecm::test::expectContains;
+using ecm::test::inputError;
+using ecm::test::TempDir;
+
+const std::string kScene = R"(name: t
+grid: {origin: [0, 0], cell_size: [10, 10], cells: [10, 12]}
+materials:
+  - {name: e, model: linear_elastic, hypothesis: plane_stress, youngs_modulus: 1000, poisson_ratio: 0.2, density: 1e-9}
+bodies:
+  - {rectangle: {min: [0, 0], max: [100, 100]}, material: e}
+end_time: 1e-3
+conditions:
+  - {name: base, box: {min: [0, 0], max: [100, 0]}, fixed: [x, y]}
+)";
+
+TEST(SceneYaml, ShippedScenesLoad) {
+  for (const char* name : {"elastic-bar.yaml", "tension-block.yaml"}) {
+    const Scene s = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data" / "mpm" / name);
+    EXPECT_NO_THROW(s.validate()) << name;
+    EXPECT_GT(s.endTime, 0.0);
+  }
+  const Scene block = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data" / "mpm" / "tension-block.yaml");
+  EXPECT_EQ(block.materials[0].model, ModelKind::Enriched);
+  EXPECT_EQ(block.bodies.size(), 3u);
+  EXPECT_TRUE(block.bodies[1].subtract);
+  EXPECT_EQ(block.conditions[1].component[1].kind, Prescribed::Displacement);
+  EXPECT_DOUBLE_EQ(block.conditions[1].component[1].history(1.0), 0.04);
+}
+
+TEST(SceneYaml, ReadsEveryPart) {
+  const std::string text = kScene + R"(solver: {scheme: musl, shape_function: ugimp, flip: 0.9, cfl: 0.5, effective_size: oriented,
+         local_damping: 0.1, viscous_damping: 5, gravity: [0, -9810], substep_levels: 3}
+output_interval: 1e-4
+loads:
+  - {name: pull, box: {min: [0, 95], max: [100, 100]}, on: nodes, force: [0, 10],
+     history: {type: table, points: [[0, 0], [1e-3, 1]]}}
+)";
+  const Scene s = readScene(io::parseYaml(text, "scene.yaml"));
+  EXPECT_EQ(s.solver.scheme, UpdateScheme::MUSL);
+  EXPECT_EQ(s.solver.shapeFunction, ShapeFunction::UGimp);
+  EXPECT_EQ(s.solver.effectiveSize, EffectiveSizeRule::Oriented);
+  EXPECT_DOUBLE_EQ(s.solver.gravity[1], -9810.0);
+  EXPECT_EQ(s.loads[0].target, LoadTarget::Nodes);
+  EXPECT_DOUBLE_EQ(s.loads[0].history(5e-4), 0.5);
+  EXPECT_EQ(s.conditions[0].component[0].kind, Prescribed::Fixed);
+}
+
+TEST(SceneYaml, ErrorsNameFileAndLine) {
+  auto err = [](const std::string& text) { return inputError([&] { readScene(io::parseYaml(text, "scene.yaml")); }); };
+  {
+    const auto e = err(kScene + "bogus: 1\n");
+    EXPECT_EQ(e.line, 10);
+    expectContains(e.what(), "scene.yaml:10:");
+    expectContains(e.what(), "bogus");
+  }
+  {
+    std::string t = kScene;
+    t.replace(t.find("end_time: 1e-3\n"), 15, "");
+    expectContains(err(t).what(), "end_time");
+  }
+  {
+    const auto e = err(kScene + "solver: {cfl: 1.5}\n");
+    EXPECT_EQ(e.line, 10);
+    expectContains(e.what(), "cfl");
+  }
+  {
+    std::string t = kScene;
+    t.replace(t.find("material: e}"), 12, "material: x}");
+    const auto e = err(t);
+    EXPECT_EQ(e.line, 6);  // the body's line
+    expectContains(e.what(), "unknown material 'x'");
+  }
+  {
+    std::string t = kScene;
+    t.replace(t.find("max: [100, 0]}"), 14, "max: [100, 0]}, displacement: {z: {type: hold, value: 1}}");
+    expectContains(err(t).what(), "'z'");  // unknown key in the displacement map
+  }
+  {
+    const auto e = err(kScene + "  - {name: far, box: {min: [500, 500], max: [600, 600]}, fixed: [x]}\n");
+    EXPECT_EQ(e.line, 10);
+    expectContains(e.what(), "contains no grid node");
+  }
+  {
+    const auto e = err(kScene + "loads:\n  - {name: l, box: {min: [0, 0], max: [1, 1]}, force: [0, 1],\n     history: {type: linear_ramp, value: 1, time: -1}}\n");
+    EXPECT_EQ(e.line, 12);
+    expectContains(e.what(), "time");
+  }
+  {
+    const auto e = err(kScene + "bodies2: []\n");
+    expectContains(e.what(), "bodies2");
+  }
+}
+
+}  // namespace
+}  // namespace ecm::mpm::test

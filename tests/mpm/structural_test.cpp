@@ -1,0 +1,79 @@
+// Structural runs of the shipped scenes through the whole program path (YAML -> run -> output
+// folder). Labelled `slow` (ctest -LE slow skips them).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "../io/temp_dir.hpp"
+#include "io/csv_reader.hpp"
+#include "mpm/run.hpp"
+#include "mpm/scene_yaml.hpp"
+
+namespace ecm::mpm::test {
+namespace {
+
+using ecm::test::readFile;
+using ecm::test::TempDir;
+
+std::filesystem::path scenePath(const char* name) { return std::filesystem::path(ECM_SOURCE_DIR) / "data" / "mpm" / name; }
+
+// Fixed-free bar released with v0: the clamp force is a square wave of amplitude rho c v0 A and
+// period 4 L / c (d'Alembert solution, e.g. Graff, Wave Motion in Elastic Solids, sec. 1.2).
+TEST(Structural, ElasticBarSceneReactionIsTheSquareWaveOfTheClosedForm) {
+  TempDir tmp;
+  const Scene s = loadSceneFile(scenePath("elastic-bar.yaml"));
+  RunOptions o;
+  o.outputDir = tmp.path();
+  o.progress = false;
+  ASSERT_TRUE(runScene(s, o).completed);
+  const io::CsvTable h = io::readCsv(tmp.path() / "history.csv");
+  const double c = std::sqrt(32000.0 / 2.4e-9), v0 = 100.0, area = 1.5625 * 1.0, length = 100.0;
+  const double amplitude = 2.4e-9 * c * v0 * area, period = 4.0 * length / c;
+  std::vector<double> plateau;  // |R| in the middle of each half period
+  std::vector<double> crossings;
+  for (std::size_t i = 1; i < h.rows.size(); ++i) {
+    ASSERT_EQ(h.header[4], "clamp_rx_N");
+    const double t = h.rows[i][0], r = h.rows[i][4];
+    const double phase = std::fmod(t / (0.5 * period), 1.0);
+    if (phase > 0.3 && phase < 0.7) plateau.push_back(std::abs(r));
+    const double r0 = h.rows[i - 1][4];
+    if (i > 1 && (r0 < 0.0) != (r < 0.0))
+      crossings.push_back(h.rows[i - 1][0] + (h.rows[i][0] - h.rows[i - 1][0]) * r0 / (r0 - r));
+  }
+  std::sort(plateau.begin(), plateau.end());
+  const double median = plateau[plateau.size() / 2];
+  EXPECT_NEAR(median, amplitude, 0.01 * amplitude);
+  ASSERT_GE(crossings.size(), 3u);
+  EXPECT_NEAR(crossings[2] - crossings[0], period, 0.01 * period);
+  std::printf("[ structural ] bar: reaction plateau %.5f N (closed form %.5f), period %.5e s (closed form %.5e)\n",
+              median, amplitude, crossings[2] - crossings[0], period);
+}
+
+// The double-notched block cracks at the ligament; its peak load is of the order of the
+// ligament capacity f_t' b t = 3 MPa x 60 mm x 50 mm = 9 kN.
+TEST(Structural, TensionBlockSceneCracksAtTheLigament) {
+  TempDir tmp;
+  const Scene s = loadSceneFile(scenePath("tension-block.yaml"));
+  RunOptions o;
+  o.outputDir = tmp.path();
+  o.progress = false;
+  const RunResult r = runScene(s, o);
+  ASSERT_TRUE(r.completed) << r.error;
+  EXPECT_GT(r.peakLoad, 0.8 * 9000.0);
+  EXPECT_LT(r.peakLoad, 1.15 * 9000.0);
+  const auto j = nlohmann::json::parse(readFile(tmp.path() / "summary.json"));
+  EXPECT_GT(j["cracked_particles"].get<int>(), 0);
+  const io::CsvTable h = io::readCsv(tmp.path() / "history.csv");
+  const auto col = std::find(h.header.begin(), h.header.end(), "top_ry_N") - h.header.begin();
+  ASSERT_LT(static_cast<std::size_t>(col), h.header.size());
+  const double last = h.rows.back()[static_cast<std::size_t>(col)];  // at the end: softened
+  EXPECT_LT(last, 0.8 * r.peakLoad);
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "particles.pvd"));
+  std::printf("[ structural ] tension block: peak %.1f N, final %.1f N, %d cracked, %.2f s\n", r.peakLoad, last,
+              j["cracked_particles"].get<int>(), r.wallTime);
+}
+
+}  // namespace
+}  // namespace ecm::mpm::test

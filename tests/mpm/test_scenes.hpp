@@ -1,0 +1,93 @@
+#pragma once
+// Small scenes shared by the MPM tests (units: mm, N, MPa, t, s).
+#include <cmath>
+#include <numbers>
+
+#include "mpm/solver.hpp"
+
+namespace ecm::mpm::test {
+
+inline MaterialParams elasticMaterial(double e = 32000.0, double nu = 0.0, double density = 2.4e-9,
+                                      Hypothesis h = Hypothesis::PlaneStress) {
+  MaterialParams m;
+  m.name = "elastic";
+  m.model = ModelKind::LinearElastic;
+  m.elastic = {e, nu, h};
+  m.density = density;
+  return m;
+}
+
+// The paper's DEN concrete (material/paper_concrete.hpp values) with a density.
+inline MaterialParams paperConcrete() {
+  MaterialParams m;
+  m.name = "den-concrete";
+  m.model = ModelKind::Enriched;
+  m.elastic = {32000.0, 0.2, Hypothesis::PlaneStress};
+  m.density = 2.4e-9;
+  m.tensileStrength = 3.0;
+  m.softeningModulus = 8.184;
+  m.softeningExponent = 0.128;
+  m.bandWidth = 0.05;
+  return m;
+}
+
+// A free-free bar of length L along x, one cell high, `cells` cells long, with a margin of
+// two cells on every side; nu = 0 makes it one-dimensional.
+struct BarSetup {
+  double length = 100.0;   // mm
+  double e = 32000.0;      // MPa
+  double density = 2.4e-9; // t/mm^3
+  int cells = 64;
+  ShapeFunction shape = ShapeFunction::Linear;
+  UpdateScheme scheme = UpdateScheme::USL;
+  double cfl = 0.3;
+
+  double h() const { return length / cells; }
+  double x0() const { return 2.0 * h(); }
+  double waveSpeed() const { return std::sqrt(e / density); }
+  double omega() const { return std::numbers::pi * waveSpeed() / length; }  // mode 1, free-free
+  double period() const { return 2.0 * length / waveSpeed(); }
+  double v0() const { return 1e-4 * waveSpeed(); }  // peak strain 1e-4
+  double mode(double x) const { return std::cos(std::numbers::pi * (x - x0()) / length); }
+
+  Scene scene() const {
+    Scene s;
+    s.name = "bar";
+    s.grid = {Vec2::Zero(), Vec2(h(), h()), cells + 4, 5};
+    s.materials = {elasticMaterial(e, 0.0, density)};
+    s.bodies = {{Shape::rectangle(Vec2(x0(), 2.0 * h()), Vec2(x0() + length, 3.0 * h())), 0, false, Vec2::Zero()}};
+    s.particlesPerCell = 2;
+    s.solver.shapeFunction = shape;
+    s.solver.scheme = scheme;
+    s.solver.cfl = cfl;
+    return s;
+  }
+  // v(X, 0) = v0 cos(pi (X - x0) / L): mode 1, u(X, t) = v0 / omega cos(...) sin(omega t).
+  void setInitialVelocity(Solver& solver) const {
+    auto& p = solver.particles();
+    for (std::size_t i = 0; i < p.size(); ++i) p.velocity[i] = Vec2(v0() * mode(p.position[i][0]), 0.0);
+  }
+};
+
+}  // namespace ecm::mpm::test
+
+namespace ecm::mpm::test {
+
+// A 100 x 100 mm block on a fixed base, pulled at its top row of particles by a total force
+// (smooth ramp, then held), with local damping: a quasi-static elastic run.
+inline Scene tensionBlock(double force = 1000.0, int cells = 10) {
+  const double h = 100.0 / cells;
+  Scene s;
+  s.name = "tension-block";
+  s.grid = {Vec2::Zero(), Vec2(h, h), cells, cells + 2};
+  s.materials = {elasticMaterial(32000.0, 0.0)};
+  s.bodies = {{Shape::rectangle(Vec2(0.0, 0.0), Vec2(100.0, 100.0)), 0, false, Vec2::Zero()}};
+  s.conditions = {NodeCondition::fixed("base", {Vec2(-1.0, 0.0), Vec2(101.0, 0.0)})};
+  s.loads = {{"pull", {Vec2(-1.0, 100.0 - h / 2.0), Vec2(101.0, 101.0)}, LoadTarget::Particles, Vec2(0.0, force),
+              History::smoothRamp(1.0, 3e-4)}};
+  s.solver.damping.local = 0.3;
+  s.endTime = 1.2e-3;
+  return s;
+}
+
+}  // namespace ecm::mpm::test
