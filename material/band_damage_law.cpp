@@ -1,5 +1,7 @@
 #include "material/band_damage_law.hpp"
 
+#include <cmath>
+
 #include "material/driving_force.hpp"
 
 namespace ecm {
@@ -28,7 +30,10 @@ BandResponse BandDamageLaw::evaluate(const LoadingSurface& surface, const Voigt&
   const bool onSurface = y.value >= threshold * (1.0 - 1e-12) && y.value > 0.0;
   if ((r.loading || (loadingTangent && onSurface)) && r.integrity > 0.0) {
     // dx/deps = (dx/dY) (dY/dsigma) a, with dx/dY = 1 / F'(x)
-    const double dxdy = 1.0 / damageFunctionSlope(law_, r.integrity);
+    // At an integrity near the underflow limit, dF/dx overflows (x^(n-1)); the damage then
+    // no longer changes the (vanishing) stress: its contribution to the tangent is zero.
+    const double slope = damageFunctionSlope(law_, r.integrity);
+    const double dxdy = std::isfinite(slope) && slope != 0.0 ? 1.0 / slope : 0.0;
     const Eigen::RowVector3d dxde = dxdy * r.drivingForceRate;
     r.tangent = r.integrity * stiffness_ + effective * dxde;
   } else {

@@ -141,3 +141,22 @@ TEST(Extremes, SnapBackSetsInJustAboveTheOneDimensionalSize) {
 
 }  // namespace
 }  // namespace ecm
+
+namespace ecm {
+namespace {
+
+TEST(Extremes, IntegrityAtTheUnderflowLimitKeepsTheTangentFinite) {
+  // Fuzzer finding (fuzz/corpus/material_update/material_update-crash-4487...): with n = 0.001
+  // a huge strain drives x = 1 - D to ~1e-315, where dF/dx overflows; the tangent was NaN.
+  SmearedCrack model({{31.6244, -0.989639, Hypothesis::PlaneStress}, 0.0316244, 0.00100507, 0.001});
+  SmearedCrack::State s;
+  const UpdateResult r = model.update(s, Voigt(9.9276723756738416, 9.9222106138812531, 1.2502032895507427));
+  ASSERT_TRUE(r.converged());
+  EXPECT_LT(s.integrity, 1e-300);
+  EXPECT_TRUE(r.stress.allFinite());
+  EXPECT_TRUE(r.tangent.allFinite());
+  EXPECT_GE(r.dissipation, 0.0);
+}
+
+}  // namespace
+}  // namespace ecm
