@@ -1,5 +1,5 @@
 // ecm-mpm: runs an MPM scene (YAML) and writes its output folder.
-//   ecm-mpm SCENE.yaml [-o DIR] [--threads N] [--no-vtu] [--no-plot] [--quiet]
+//   ecm-mpm SCENE.yaml [-o|--out DIR] [--threads N] [--no-vtu] [--no-plot] [--quiet]
 // Exit status: 0 completed, 1 the run failed (see summary.json), 2 bad input or output folder.
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
   std::string outDir;
   bool noVtu = false, noPlot = false, quiet = false;
   app.add_option("scene", scenePath, "scene file (YAML)")->required()->check(CLI::ExistingFile);
-  app.add_option("-o,--output", outDir, "output folder (default: SCENE-NAME-out next to the working folder)");
+  app.add_option("-o,--output,--out", outDir, "output folder (default: SCENE-NAME-out next to the working folder)");
   app.add_option("-t,--threads", options.threads, "OpenMP threads (0: default)")->check(CLI::NonNegativeNumber);
   app.add_flag("--no-vtu", noVtu, "do not write VTU particle snapshots");
   app.add_flag("--no-plot", noPlot, "do not render the load-displacement PNG");

@@ -1,5 +1,6 @@
 #include "mpm/run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -75,6 +76,33 @@ void plot(const Scene& scene, const std::filesystem::path& dir) {
   }
   if (spec.series.empty()) return;
   io::renderPlot(spec, dir / "load_displacement.png");
+}
+
+// The final state of every particle (x, y, damage, material id, normal opening of the band), for
+// damage and crack maps.
+void writeParticles(const Solver& s, const std::filesystem::path& path) {
+  io::CsvWriter csv(path, {"x_mm", "y_mm", "damage", "material", "opening_mm"});
+  const Particles& p = s.particles();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double opening = p.band[i] >= 0 ? p.bands[static_cast<std::size_t>(p.band[i])].normalJump() : 0.0;
+    csv.row({p.position[i][0], p.position[i][1], s.damage(i), static_cast<double>(p.material[i]), opening});
+  }
+  csv.close();
+}
+
+// The damage map of particles_final.csv: one square point per particle, coloured by damage.
+void plotDamage(const Scene& scene, std::size_t particles, const std::filesystem::path& dir) {
+  const double size = std::clamp(0.35 * std::sqrt(25000.0 / static_cast<double>(std::max<std::size_t>(particles, 1))), 0.05, 1.0);
+  io::PlotSpec spec;
+  spec.title = scene.name + ": damage at the end";
+  spec.xLabel = "x (mm)";
+  spec.yLabel = "y (mm)";
+  spec.width = 800;
+  spec.height = 760;
+  spec.functions = {"set size ratio -1", "set cbrange [0:1]", "set cblabel 'damage'",
+                    "set palette defined (0 '#f2f2f2', 0.3 '#9ecae1', 0.7 '#de2d26', 1 '#67000d')", "unset grid"};
+  spec.series.push_back({"particles_final.csv", "1:2:3", "", "", "points pt 5 ps " + std::to_string(size) + " lc palette"});
+  io::renderPlot(spec, dir / "damage_map.png");
 }
 
 }  // namespace
@@ -171,8 +199,12 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
         {"damping", e.damping}}},
       {"units", "mm, N, MPa, t, s"}};
   if (!result.completed) summary["error"] = result.error;
+  writeParticles(solver, dir / "particles_final.csv");  // also after a failure: the state at it
   io::writeJsonSummary(summary, dir / "summary.json");
-  if (options.plot) plot(scene, dir);
+  if (options.plot) {
+    plot(scene, dir);
+    plotDamage(scene, solver.particles().size(), dir);
+  }
   return result;
 }
 

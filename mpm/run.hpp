@@ -1,6 +1,7 @@
 #pragma once
 // A whole run of a scene with its output folder: history.csv (flushed every output step),
-// VTU snapshots with a .pvd index, summary.json, a load-displacement PNG, progress on stderr.
+// VTU snapshots with a .pvd index, summary.json, a load-displacement PNG, the final particles
+// (particles_final.csv: x, y, damage, material, opening) with their damage map PNG, progress on stderr.
 // A failure still leaves everything written so far readable, and a summary saying why.
 #include <filesystem>
 #include <string>

@@ -110,6 +110,17 @@ SolverSettings readSolver(const YamlMap& m) {
   return s;
 }
 
+int materialIndex(const YamlMap& m, const std::string& key, const std::map<std::string, int>& materials) {
+  const std::string name = m.get<std::string>(key);
+  const auto it = materials.find(name);
+  if (it == materials.end()) {
+    std::string known;
+    for (const auto& [k, v] : materials) known += (known.empty() ? "" : ", ") + k;
+    m.fail(key, "unknown material '" + name + "' (defined: " + known + ")");
+  }
+  return it->second;
+}
+
 Body readBody(const YamlMap& m, const std::map<std::string, int>& materials) {
   Body b;
   const int shapes = int(m.has("rectangle")) + int(m.has("polygon")) + int(m.has("circle"));
@@ -134,16 +145,23 @@ Body readBody(const YamlMap& m, const std::map<std::string, int>& materials) {
     m.reject("initial_velocity", "a subtracting body has no particles");
     return b;
   }
-  const std::string name = m.get<std::string>("material");
-  const auto it = materials.find(name);
-  if (it == materials.end()) {
-    std::string known;
-    for (const auto& [k, v] : materials) known += (known.empty() ? "" : ", ") + k;
-    m.fail("material", "unknown material '" + name + "' (defined: " + known + ")");
-  }
-  b.material = it->second;
+  b.material = materialIndex(m, "material", materials);
   if (m.has("initial_velocity")) b.initialVelocity = vec2(m, "initial_velocity");
   return b;
+}
+
+// An `rve:` body: the sample generated here, expanded into matrix, ITZ and inclusion bodies.
+std::vector<Body> readRveBody(const YamlMap& m, const std::map<std::string, int>& materials) {
+  const YamlMap r = m.child("rve");
+  const RveParams p = readRveParams(r);
+  const int matrix = materialIndex(r, "matrix", materials);
+  const int inclusion = materialIndex(r, "inclusion", materials);
+  const int itz = materialIndex(r, "itz", materials);
+  try {
+    return rveBodies(generateRve(p), matrix, inclusion, itz);
+  } catch (const RveInfeasible& e) {
+    r.failHere(e.what());
+  }
 }
 
 NodeCondition readCondition(const YamlMap& m, const Grid& grid) {
@@ -228,7 +246,15 @@ Scene readScene(const YamlMap& m) {
   }
   if (s.materials.empty()) m.fail("materials", "needs at least one material");
   if (s.materials.size() > 255) m.fail("materials", "at most 255 materials");
-  for (const YamlMap& b : m.sequence("bodies")) s.bodies.push_back(readBody(b, names));
+  for (const YamlMap& b : m.sequence("bodies")) {
+    if (b.has("rve")) {
+      for (const char* k : {"rectangle", "polygon", "circle", "subtract", "material", "initial_velocity"})
+        b.reject(k, "an rve body holds only the rve map");
+      for (Body& body : readRveBody(b, names)) s.bodies.push_back(std::move(body));
+    } else {
+      s.bodies.push_back(readBody(b, names));
+    }
+  }
   if (s.bodies.empty()) m.fail("bodies", "needs at least one body");
   if (m.has("solver")) s.solver = readSolver(m.child("solver"));
   s.endTime = m.get<double>("end_time", Range::positive());
@@ -247,5 +273,43 @@ Scene readScene(const YamlMap& m) {
 }
 
 Scene loadSceneFile(const std::filesystem::path& path) { return readScene(io::loadYamlFile(path)); }
+
+RveParams readRveParams(const YamlMap& m) {
+  RveParams p;
+  p.side = m.get<double>("side", Range::positive());
+  if (m.has("origin")) p.origin = vec2(m, "origin");
+  p.seed = static_cast<std::uint64_t>(m.get<int>("seed", Range::closed(0.0, 2147483647.0)));
+  p.volumeFraction = m.get<double>("volume_fraction", Range::open(0.0, 1.0));
+  if (m.has("diameters") == m.has("grading"))
+    m.failHere("an rve needs exactly one of diameters: [d_min, d_max] and grading: [[d, passing], ...]");
+  if (m.has("diameters")) {
+    const auto d = m.getVector("diameters", 2, Range::positive());
+    if (!(d[1] >= d[0])) m.fail("diameters", "expected [d_min, d_max] with d_max >= d_min (mm)");
+    const double q = m.getOr<double>("fuller_exponent", 0.5, Range::open(0.0, 10.0));
+    p.grading = fullerGrading(d[0], d[1], q);
+  } else {
+    m.reject("fuller_exponent", "applies to diameters: [d_min, d_max] only");
+    p.grading.clear();
+    for (const Vec2& g : pairs(m, "grading", 2)) p.grading.push_back({g[0], g[1]});
+  }
+  p.itzThickness = m.get<double>("itz_thickness", Range::positive());
+  if (m.has("gap")) p.gap = m.get<double>("gap", Range::nonNegative());
+  p.attempts = m.getOr<int>("attempts", p.attempts, Range::closed(1.0, 1e9));
+  p.tolerance = m.getOr<double>("tolerance", p.tolerance, Range{0.0, 1.0, true, false});
+  try {
+    p.validate();
+  } catch (const std::invalid_argument& e) {
+    m.failHere(e.what());
+  }
+  return p;
+}
+
+std::vector<RveParams> sceneRveParams(const YamlMap& scene) {
+  std::vector<RveParams> out;
+  if (!scene.has("bodies")) return out;
+  for (const YamlMap& b : scene.sequence("bodies"))
+    if (b.has("rve")) out.push_back(readRveParams(b.child("rve")));
+  return out;
+}
 
 }  // namespace ecm::mpm

@@ -12,6 +12,21 @@
 //     - {rectangle: {min: [0, 0], max: [100, 100]}, material: den-concrete}
 //     - {polygon: [[0, 45], [20, 50], [0, 55]], subtract: true}
 //     - {circle: {center: [50, 50], radius: 5}, subtract: true, initial_velocity: [0, 0]}
+//     - rve:                    # a mesoscale sample (mpm/rve_sample.hpp): expands into the matrix
+//         side: 25              #   square, the ITZ circles (r + t), the inclusion circles (r)
+//         origin: [0, 0]        # mm, optional
+//         seed: 1               # integer in [0, 2^31)
+//         volume_fraction: 0.4  # inclusion area fraction (ITZ not counted), (0, 1)
+//         diameters: [1, 4]     # d_min, d_max (mm): Fuller curve P = (d / d_max)^fuller_exponent
+//         fuller_exponent: 0.5  #   optional (default 0.5)
+//         # or grading: [[d, passing], ...]   increasing (mm, any scale), instead of diameters
+//         itz_thickness: 0.1    # t (mm)
+//         gap: 0.1              # mm between ITZ rings and to the sides, optional (default 0.1 d_min)
+//         attempts: 20000       # trial centres per inclusion, optional
+//         tolerance: 0.005      # accepted shortfall of the fraction, optional
+//         matrix: rve-matrix    # material names
+//         inclusion: rve-inclusion
+//         itz: rve-itz
 //   solver:                     # all optional
 //     scheme: usl               # usf | usl | musl
 //     shape_function: linear    # linear | ugimp | bspline2
@@ -44,11 +59,18 @@
 #include <filesystem>
 
 #include "io/yaml_input.hpp"
+#include "mpm/rve_sample.hpp"
 #include "mpm/scene.hpp"
 
 namespace ecm::mpm {
 
 Scene readScene(const io::YamlMap& map);
 Scene loadSceneFile(const std::filesystem::path& path);
+
+// The sample parameters of an `rve:` map (all keys above except the material names). Out-of-range
+// values are InputErrors; the sample itself is not generated.
+RveParams readRveParams(const io::YamlMap& rve);
+// The parameters of every `rve:` body of a scene map, in order (for tools such as ecm-rve).
+std::vector<RveParams> sceneRveParams(const io::YamlMap& scene);
 
 }  // namespace ecm::mpm
