@@ -103,9 +103,7 @@ class Runner {
       if (lambda + out.loadFactor < 1.0) {
         lambda += out.loadFactor;
         point_ = trial;
-        stress_ = out.step.result.stress;
-        work_ += 0.5 * (stress_ + out.step.result.stress).dot(out.step.strainIncrement);
-        dissipation_ += out.step.dissipation;
+        accumulate(out.step);
         dJump = std::min(dJump * 1.5, 1e-2 * h + dJump);
         continue;
       }
@@ -124,11 +122,8 @@ class Runner {
         if (std::abs(fm) < 1e-12) break;
         (fm < 0.0 ? (lo = mid, flo = fm) : (hi = mid, fhi = fm));
       }
-      const Voigt oldStress = stress_;
       point_ = landed;
-      stress_ = best.step.result.stress;
-      work_ += 0.5 * (oldStress + stress_).dot(best.step.strainIncrement);
-      dissipation_ += best.step.dissipation;
+      accumulate(best.step);
       r.stressAfter = principalStresses(stress_).first;
       r.jumped = true;
       record(k, ++increment_, best.step, true, true, false);
@@ -202,12 +197,15 @@ class Runner {
     return false;
   }
 
-  void record(int k, int inc, const StepOutcome& out, bool opening, bool jump, bool accumulate = true) {
-    if (accumulate && inc > 0) {
-      work_ += 0.5 * (stress_ + out.result.stress).dot(out.strainIncrement);
-      dissipation_ += out.dissipation;
-      stress_ = out.result.stress;
-    }
+  // Work (trapezoid in the increment) and dissipation of a committed step; then its stress.
+  void accumulate(const StepOutcome& out) {
+    work_ += 0.5 * (stress_ + out.result.stress).dot(out.strainIncrement);
+    dissipation_ += out.dissipation;
+    stress_ = out.result.stress;
+  }
+
+  void record(int k, int inc, const StepOutcome& out, bool opening, bool jump, bool accumulateStep = true) {
+    if (accumulateStep && inc > 0) accumulate(out);
     HistoryRow r;
     r.increment = inc;
     r.segment = k + 1;
