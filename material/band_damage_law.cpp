@@ -25,10 +25,16 @@ BandResponse BandDamageLaw::evaluate(const LoadingSurface& surface, const Voigt&
   r.drivingForce = y.value;
   r.drivingForceRate = y.stressGradient.transpose() * stiffness_;
   r.loading = y.value > threshold;
-  r.integrity = r.loading ? solveIntegrity(law_, y.value, x0) : x0;
+  if (r.loading)
+    r.integrity = solveIntegrity(law_, y.value, x0);
+  else if (surface.envelope)
+    r.integrity = y.value > onsetY_ ? solveIntegrity(law_, y.value, 1.0) : 1.0;  // below the surface: healed envelope
+  else
+    r.integrity = x0;
   r.stress = r.integrity * effective;  // Eq. (11)
   const bool onSurface = y.value >= threshold * (1.0 - 1e-12) && y.value > 0.0;
-  if ((r.loading || (loadingTangent && onSurface)) && r.integrity > 0.0) {
+  const bool onEnvelope = surface.envelope && y.value > onsetY_;
+  if ((r.loading || onEnvelope || (loadingTangent && onSurface)) && r.integrity > 0.0) {
     // dx/deps = (dx/dY) (dY/dsigma) a, with dx/dY = 1 / F'(x)
     // At an integrity near the underflow limit, dF/dx overflows (x^(n-1)); the damage then
     // no longer changes the (vanishing) stress: its contribution to the tangent is zero.

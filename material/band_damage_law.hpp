@@ -38,10 +38,15 @@ class BandDamageLaw {
 
   // The damage threshold at the start of an increment: Y <= F(x0), Eq. (12).
   struct LoadingSurface {
-    double integrity;  // x0
-    double threshold;  // F(x0)
+    double integrity;       // x0
+    double threshold;       // F(x0)
+    bool envelope = false;  // evaluate on the monotonic envelope x = F^-1(Y), also below the surface
   };
   LoadingSurface loadingSurface(double integrity) const { return {integrity, damageFunction(law_, integrity)}; }
+  // The same surface, but evaluate() follows the monotonic loading envelope: x solves F(x) = Y
+  // without the irreversibility cap, with the loading tangent. Smooth across the surface, it is
+  // the branch a damage corrector iterates on (no loading/unloading kink inside Newton).
+  LoadingSurface envelope(double integrity) const { return {integrity, damageFunction(law_, integrity), true}; }
 
   // Pure: does not change any state. The surface is that of the start of the increment.
   // With loadingTangent, a point exactly on the loading surface gets the one-sided loading

@@ -1,6 +1,7 @@
 #include "material/enriched_band.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "material/driving_force.hpp"
@@ -78,48 +79,127 @@ Tangent EnrichedBand::consistentTangent(const BandState& b, const BandEquilibriu
   return a / (1.0 - f) * (Tangent::Identity() - f / bandWidth_ * n * dJumpdStrain);                      // Eq. (10)
 }
 
-UpdateResult EnrichedBand::updateCracked(BandState& b, Voigt& strain, const Voigt& increment) const {
+UpdateResult EnrichedBand::updateCracked(BandState& b, Voigt& strain, const Voigt& increment,
+                                         SnapBackPolicy policy) const {
+  UpdateResult r = predictCorrect(b, strain, increment);
+  if (r.status == UpdateStatus::SnapBack && policy == SnapBackPolicy::Release) return releaseSnapBack(b, strain, increment);
+  return r;
+}
+
+UpdateResult EnrichedBand::releaseSnapBack(BandState& b, Voigt& strain, const Voigt& increment) const {
   const Voigt eps = strain + increment;
   const JumpMap n = jumpToStrain(b.crackNormal);
+  const double f = b.volumeFraction;
+  // With the damage frozen at x, Eq. (6) is linear in [u] (secant K of Eq. (9)): [u](x) in one
+  // solve. The band is in equilibrium with consistent damage where g(x) = Y([u](x)) - F(x) = 0.
+  // g > 0 at x0 (the band must load); g -> -inf as x -> 0 (F ~ x^-2n, Y bounded). Scan x down
+  // geometrically for sign changes, solve each in log x, keep the first stable root.
+  struct Probe {
+    double g;
+    BandState band;
+  };
+  const auto probe = [&](double x) {
+    Probe p{0.0, b};
+    p.band.integrity = x;
+    const BandDamageLaw::LoadingSurface frozen{x, std::numeric_limits<double>::infinity()};
+    const BandEquilibrium eq = equilibrium(p.band, frozen, eps, b.jump, false);
+    const Mat2 secant = n.transpose() * ((f / (1.0 - f) + x) * stiffness()) * n / bandWidth_;
+    p.band.jump = b.jump + secant.llt().solve(eq.residual);
+    const BandEquilibrium moved = equilibrium(p.band, frozen, eps, p.band.jump, false);
+    p.g = moved.band.drivingForce / damageFunction(law_.law(), x) - 1.0;
+    return p;
+  };
   UpdateResult res;
-  Vec2 jump = b.jump;
-  const BandDamageLaw::LoadingSurface surface = law_.loadingSurface(b.integrity);
-  BandEquilibrium eq = equilibrium(b, surface, eps, jump, true);
-  // Relative to f_t'; at enormous strains the floor is the round-off of a : eps itself.
-  const double tol = kRelativeTolerance * tensileStrength() + kRoundOff * (stiffness() * eps).norm();
-  double rn = eq.residual.norm();
-  const bool startsOnSurface = eq.band.drivingForce >= surface.threshold * (1.0 - 1e-12) &&
-                               eq.band.drivingForce > 0.0;
-  int it = 0;
-  bool sawUnstableBranch = false;
-  for (; rn > tol && it < kMaxIterations; ++it) {
-    Vec2 step = eq.jacobian.partialPivLu().solve(eq.residual);
-    if (it == 0 && startsOnSurface) {
-      // At [u] = [u]_old the band sits on its loading surface (MODEL-NOTES pitfall 2): take the
-      // loading tangent if its step does load the band, the secant one if its step unloads it.
-      // If neither is consistent the loading branch has turned back: a snap-back.
-      const auto rate = [&](const Vec2& s) { return eq.band.drivingForceRate.dot(n * s); };
-      const bool loadingOk = positiveDefinite(eq.jacobian) && rate(step) >= 0.0;
-      if (!loadingOk) {
-        const Mat2 secant = n.transpose() * (b.volumeFraction / (1.0 - b.volumeFraction) * stiffness() +
-                                             b.integrity * stiffness()) * n / bandWidth_;
-        const Vec2 secantStep = secant.partialPivLu().solve(eq.residual);
-        if (rate(secantStep) <= 0.0) {
-          step = secantStep;
-        } else if (!positiveDefinite(eq.jacobian)) {
-          res.status = UpdateStatus::SnapBack;
-          res.residual = rn;
-          res.iterations = it;
-          res.stress = eq.stress;
-          return res;
-        }
+  res.status = UpdateStatus::SnapBack;
+  Probe hi = probe(b.integrity);
+  for (int k = 0; k < kMaxReleaseSteps && hi.band.integrity > 1e-300; ++k) {
+    Probe lo = probe(hi.band.integrity * kReleaseScanRatio);
+    ++res.iterations;
+    if (!(lo.g <= 0.0) || !(hi.g > 0.0)) {
+      hi = lo;
+      continue;
+    }
+    // Illinois regula falsi in log x on the bracket [lo, hi].
+    double la = std::log(lo.band.integrity), lb = std::log(hi.band.integrity), ga = lo.g, gb = hi.g;
+    Probe root = lo;
+    int side = 0;
+    for (int it = 0; it < 100 && lb - la > 1e-15 * std::abs(lb) + 1e-300; ++it) {
+      const double lc = (la * gb - lb * ga) / (gb - ga);
+      root = probe(std::exp(lc));
+      ++res.iterations;
+      if (std::abs(root.g) <= 1e-14) break;
+      if (root.g < 0.0) {
+        la = lc, ga = root.g;
+        if (side == -1) gb *= 0.5;
+        side = -1;
+      } else {
+        lb = lc, gb = root.g;
+        if (side == +1) ga *= 0.5;
+        side = +1;
       }
     }
+    // Polish with the regular update at zero increment: it confirms continuity, loading
+    // consistency and stability (K of Eq. (9) positive), or reports this root unstable.
+    BandState trial = root.band;
+    Voigt s = eps;
+    const UpdateResult r = predictCorrect(trial, s, Voigt::Zero());
+    const bool isStable = r.converged() && positiveDefinite(equilibrium(trial, law_.envelope(trial.integrity), eps, trial.jump, true).jacobian);
+    if (isStable) {
+      res = r;
+      res.iterations += r.iterations;
+      res.released = true;
+      res.dissipation = f * law_.dissipation(b.integrity, trial.integrity);  // f int Y dD over the release
+      b = trial;
+      strain = eps;
+      return res;
+    }
+    hi = lo;  // unstable root: look further down
+  }
+  return res;
+}
+
+UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voigt& increment) const {
+  const Voigt eps = strain + increment;
+  UpdateResult res;
+  // Relative to f_t'; at enormous strains the floor is the round-off of a : eps itself.
+  const double tol = kRelativeTolerance * tensileStrength() + kRoundOff * (stiffness() * eps).norm();
+  const BandDamageLaw::LoadingSurface surface = law_.loadingSurface(b.integrity);
+
+  // 1. Elastic predictor: with the band's damage frozen, Eq. (6) is linear in [u] and the secant
+  //    K of Eq. (9) (a_L = x0 a, always positive definite) solves it in one step. If the band
+  //    stays inside its loading surface, that is the answer (unloading or neutral loading).
+  const JumpMap n = jumpToStrain(b.crackNormal);
+  const double f = b.volumeFraction;
+  const Mat2 secant = n.transpose() * ((f / (1.0 - f) + b.integrity) * stiffness()) * n / bandWidth_;
+  const Eigen::LLT<Mat2> secantSolver(secant);
+  const BandDamageLaw::LoadingSurface frozen{b.integrity, std::numeric_limits<double>::infinity()};
+  Vec2 jump = b.jump;
+  BandEquilibrium eq = equilibrium(b, frozen, eps, jump, false);
+  for (int it = 0; it < 3 && eq.residual.norm() > tol; ++it) {  // 1 step + round-off
+    jump += secantSolver.solve(eq.residual);
+    eq = equilibrium(b, frozen, eps, jump, false);
+    ++res.iterations;
+  }
+  if (eq.band.drivingForce <= surface.threshold) return finishUpdate(b, strain, eps, jump, eq, tol, res);
+
+  // 2. Damage corrector: Newton with line search on the monotonic loading envelope, smooth across
+  //    the loading surface (MODEL-NOTES pitfall 2: no loading/unloading kink inside the
+  //    iteration), from [u]_old with the loading tangent. The root must load the band
+  //    (x <= x0) on a stable branch (K of Eq. (9) positive definite); otherwise the loading
+  //    branch has turned back under strain control: a snap-back.
+  const BandDamageLaw::LoadingSurface envelope = law_.envelope(b.integrity);
+  jump = b.jump;
+  eq = equilibrium(b, envelope, eps, jump, true);
+  double rn = eq.residual.norm();
+  bool sawUnstableBranch = false;
+  int it = 0;
+  for (; rn > tol && it < kMaxIterations; ++it) {
+    const Vec2 step = eq.jacobian.partialPivLu().solve(eq.residual);
     if (!step.allFinite()) break;
     double alpha = 1.0;
     BandEquilibrium trial;
     for (int ls = 0; ls < 40; ++ls, alpha *= 0.5) {
-      trial = equilibrium(b, surface, eps, jump + alpha * step, true);
+      trial = equilibrium(b, envelope, eps, jump + alpha * step, true);
       if (trial.residual.norm() < (1.0 - 1e-4 * alpha) * rn) break;
     }
     jump += alpha * step;
@@ -127,30 +207,52 @@ UpdateResult EnrichedBand::updateCracked(BandState& b, Voigt& strain, const Voig
     rn = eq.residual.norm();
     sawUnstableBranch = sawUnstableBranch || (eq.band.loading && !positiveDefinite(eq.jacobian));
   }
+  res.iterations += it;
   res.residual = rn;
-  res.iterations = it;
   res.stress = eq.stress;
   if (!(rn <= tol)) {
-    // Newton that wandered through loading states with C of Eq. (9) not positive was looking
+    // Newton that wandered through loading states with K of Eq. (9) not positive was looking
     // for a branch that does not continue: that is a snap-back, not a numerical failure.
     res.status = sawUnstableBranch ? UpdateStatus::SnapBack : UpdateStatus::NotConverged;
     return res;
   }
-  if (it > 0 && eq.band.loading && !positiveDefinite(eq.jacobian)) {
-    res.status = UpdateStatus::SnapBack;  // Newton drifted onto a branch strain control cannot reach
+  if (eq.band.integrity >= b.integrity) {
+    // The envelope's root lies below the loading surface, where the elastic predictor found no
+    // solution either: by round-off only (neutral loading, accept with the damage unchanged),
+    // or the loading branch has turned back under strain control.
+    if (eq.band.drivingForce < surface.threshold * (1.0 - kNeutralLoading)) {
+      res.status = UpdateStatus::SnapBack;
+      return res;
+    }
+    eq = equilibrium(b, surface, eps, jump, false);  // neutral: the secant K, damage unchanged
+  } else if (!positiveDefinite(eq.jacobian)) {
+    res.status = UpdateStatus::SnapBack;  // a root on the unstable branch
     return res;
   }
   // A large loading increment may have jumped over a snap-back: the branch between the two
-  // converged states must stay stable (C of Eq. (9) positive) all along, checked at samples.
-  if (eq.band.loading && (jump - b.jump).norm() > kJumpCheck * bandWidth_) {
+  // converged states must stay stable (K of Eq. (9) positive) all along, checked at samples.
+  if ((jump - b.jump).norm() > kJumpCheck * bandWidth_) {
     for (int k = 1; k < kJumpSamples; ++k) {
-      const BandEquilibrium mid = equilibrium(b, surface, eps, b.jump + (double(k) / kJumpSamples) * (jump - b.jump), true);
-      if (mid.band.loading && !positiveDefinite(mid.jacobian)) {
+      const Vec2 mid = b.jump + (double(k) / kJumpSamples) * (jump - b.jump);
+      const BandEquilibrium m = equilibrium(b, envelope, eps, mid, true);
+      if (m.band.loading && !positiveDefinite(m.jacobian)) {
         res.status = UpdateStatus::SnapBack;
         return res;
       }
     }
   }
+  return finishUpdate(b, strain, eps, jump, eq, tol, res);
+}
+
+UpdateResult EnrichedBand::finishUpdate(BandState& b, Voigt& strain, const Voigt& eps, const Vec2& jump,
+                                        const BandEquilibrium& eq, double tol, UpdateResult& res) const {
+  res.residual = eq.residual.norm();
+  res.stress = eq.stress;
+  if (!(res.residual <= tol)) {
+    res.status = UpdateStatus::NotConverged;
+    return res;
+  }
+  res.status = UpdateStatus::Converged;
   res.tangent = consistentTangent(b, eq);
   res.dissipation = b.volumeFraction * law_.dissipation(b.integrity, eq.band.integrity);  // f int Y dD
   b.jump = jump;
@@ -160,7 +262,7 @@ UpdateResult EnrichedBand::updateCracked(BandState& b, Voigt& strain, const Voig
 }
 
 UpdateResult EnrichedBand::updateIntactSlow(Voigt& strain, const Voigt& increment, const EffectiveSize& size,
-                                            std::optional<BandState>& onset) const {
+                                            std::optional<BandState>& onset, SnapBackPolicy policy) const {
   UpdateResult r;
   r.stress = stiffness() * (strain + increment);
   r.tangent = stiffness();
@@ -180,7 +282,7 @@ UpdateResult EnrichedBand::updateIntactSlow(Voigt& strain, const Voigt& incremen
   }
   b.volumeFraction = bandWidth_ / effectiveSize;  // Eq. (1)
   Voigt cracked = b.onsetStrain;
-  r = updateCracked(b, cracked, (1.0 - *alpha) * increment);
+  r = updateCracked(b, cracked, (1.0 - *alpha) * increment, policy);
   if (r.converged()) {
     strain = cracked;
     onset = b;

@@ -43,6 +43,12 @@ struct BandEquilibrium {
   Mat2 jacobian = Mat2::Zero();      // K = -d residual / d[u] = C / (1 - f), Eq. (9)
 };
 
+// What an update does when Eq. (6) has no stable root under the given strain (a snap-back).
+enum class SnapBackPolicy {
+  Report,   // return UpdateStatus::SnapBack, state unchanged (the point driver traces it instead)
+  Release,  // the band fails dynamically at the end strain onto its stable branch (explicit MPM)
+};
+
 class EnrichedBand {
  public:
   explicit EnrichedBand(const EnrichedParams& p);
@@ -54,7 +60,7 @@ class EnrichedBand {
   // Intact point: elastic, or onset inside the increment; then `onset` receives the new band
   // state and the rest of the increment is taken cracked.
   UpdateResult updateIntact(Voigt& strain, const Voigt& strainIncrement, const EffectiveSize& size,
-                            std::optional<BandState>& onset) const {
+                            std::optional<BandState>& onset, SnapBackPolicy policy = SnapBackPolicy::Report) const {
     const Voigt end = strain + strainIncrement;
     const Voigt s = stiffness() * end;
     // Y <= (c11 + |c12|)/2 |sigma|^2: most intact updates stop here, as cheap as elastic.
@@ -62,9 +68,17 @@ class EnrichedBand {
       strain = end;
       return {s, stiffness()};
     }
-    return updateIntactSlow(strain, strainIncrement, size, onset);
+    return updateIntactSlow(strain, strainIncrement, size, onset, policy);
   }
-  UpdateResult updateCracked(BandState& band, Voigt& strain, const Voigt& strainIncrement) const;
+  UpdateResult updateCracked(BandState& band, Voigt& strain, const Voigt& strainIncrement,
+                             SnapBackPolicy policy = SnapBackPolicy::Report) const;
+
+  // Snap-back release: at the end strain of an increment whose loading branch turned back, the
+  // band's damage grows at fixed strain until traction continuity (6) holds with consistent
+  // damage (Y = F(x)) on a stable branch: the first such state below x0. Converged with
+  // `released` set, or SnapBack if none exists. The stored energy released beyond f int Y dD
+  // (the point's share of a dynamic snap) is not tracked by the point.
+  UpdateResult releaseSnapBack(BandState& band, Voigt& strain, const Voigt& strainIncrement) const;
 
   // Pure evaluation of both phases at a trial jump (used by Newton and by opening control).
   BandEquilibrium equilibrium(const BandState& band, const Voigt& strain, const Vec2& jump,
@@ -93,10 +107,20 @@ class EnrichedBand {
   // Loading increments whose jump exceeds kJumpCheck h are checked for a skipped snap-back.
   static constexpr double kJumpCheck = 1e-3;
   static constexpr int kJumpSamples = 8;
+  // A corrector root this close below the loading surface (relative in Y; the traction
+  // tolerance allows ~2e-10) is neutral loading, not a healed band.
+  static constexpr double kNeutralLoading = 1e-8;
 
  private:
+  // The cracked update proper: elastic predictor, then damage corrector on the envelope.
+  UpdateResult predictCorrect(BandState& b, Voigt& strain, const Voigt& increment) const;
+  // Commit a converged equilibrium (tangent Eq. (10), dissipation) or report NotConverged.
+  UpdateResult finishUpdate(BandState& b, Voigt& strain, const Voigt& eps, const Vec2& jump, const BandEquilibrium& eq,
+                            double tol, UpdateResult& res) const;
   UpdateResult updateIntactSlow(Voigt& strain, const Voigt& strainIncrement, const EffectiveSize& size,
-                                std::optional<BandState>& onset) const;
+                                std::optional<BandState>& onset, SnapBackPolicy policy) const;
+  static constexpr int kMaxReleaseSteps = 2000;     // scan steps of the release, x0 * ratio^k
+  static constexpr double kReleaseScanRatio = 0.9;  // (0.9^2000 ~ 1e-92: down to a failed band)
 
   BandDamageLaw law_;
   double bandWidth_;

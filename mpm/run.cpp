@@ -193,6 +193,7 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
       {"scheme", toString(scene.solver.scheme)},
       {"shape_function", toString(scene.solver.shapeFunction)},
       {"substepped_updates", solver.substepped()},
+      {"snap_back_releases", solver.snapBackReleases()},
       {"particle_updates_per_s", result.wallTime > 0.0 ? static_cast<double>(result.particles) * result.steps / result.wallTime : 0.0},
       {"energies_Nmm",
        {{"kinetic", e.kinetic}, {"strain", e.strain}, {"external_work", e.externalWork}, {"dissipated", e.dissipated},

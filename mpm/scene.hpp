@@ -34,6 +34,10 @@ struct SolverSettings {
   Vec2 gravity = Vec2::Zero();  // mm/s^2
   EffectiveSizeRule effectiveSize = EffectiveSizeRule::SquareRoot;  // enriched materials: SquareRoot or Oriented
   int substepLevels = 4;        // non-converged updates are retried with 2, 4, ... 2^levels sub-steps
+  // Enriched points whose loading branch turns back (no stable root of Eq. (6) under the
+  // increment): Release lets the band fail onto its stable branch (counted, reported); Report
+  // stops the run with the point's position and state.
+  SnapBackPolicy snapBack = SnapBackPolicy::Release;
 };
 
 struct Scene {

@@ -107,6 +107,8 @@ SolverSettings readSolver(const YamlMap& m) {
   s.damping.viscous = m.getOr<double>("viscous_damping", 0.0, Range::nonNegative());
   if (m.has("gravity")) s.gravity = vec2(m, "gravity");
   s.substepLevels = m.getOr<int>("substep_levels", 4, Range::closed(0.0, 12.0));
+  s.snapBack = m.getEnumOr("snap_back", {"release", "stop"}, "release") == "stop" ? SnapBackPolicy::Report
+                                                                                 : SnapBackPolicy::Release;
   return s;
 }
 

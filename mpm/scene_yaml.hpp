@@ -37,6 +37,8 @@
 //     viscous_damping: 0.0      # 1/s
 //     gravity: [0, 0]           # mm/s^2
 //     substep_levels: 4         # failed material updates retried with up to 2^levels sub-steps
+//     snap_back: release        # release | stop: an enriched point with no stable branch fails
+//                               # onto its stable branch (counted in summary.json) or stops the run
 //   end_time: 1e-3              # s
 //   output_interval: 1e-5       # s (0: first and last step only)
 //   conditions:                 # on the grid nodes inside a box

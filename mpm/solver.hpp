@@ -85,6 +85,7 @@ class Solver {
   double damage(std::size_t p) const;          // 0 intact .. 1 fully damaged
   EffectiveSize effectiveSize() const { return size_; }
   long substepped() const { return substepped_; }  // material updates that needed sub-stepping so far
+  long snapBackReleases() const { return released_; }  // enriched updates that released a snap-back so far
 
  private:
   Scene scene_;
@@ -104,6 +105,7 @@ class Solver {
   std::vector<LoadState> loads_;
   double externalWork_ = 0.0, dissipated_ = 0.0, damping_ = 0.0;
   long substepped_ = 0;
+  long released_ = 0;
 
   void applyVelocityConditions(bool reactions);
   void addLoads();

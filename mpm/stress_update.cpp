@@ -27,8 +27,9 @@ struct Failure {
 
 // One enriched point: the increment in one go, else in 2^level equal sub-steps.
 UpdateResult updateEnriched(const EnrichedBand& m, Voigt& strain, BandState* band, const Voigt& d,
-                            const EffectiveSize& size, std::optional<BandState>& onset, int levels, long& retries) {
-  UpdateResult r = band ? m.updateCracked(*band, strain, d) : m.updateIntact(strain, d, size, onset);
+                            const EffectiveSize& size, std::optional<BandState>& onset, int levels, SnapBackPolicy policy,
+                            long& retries) {
+  UpdateResult r = band ? m.updateCracked(*band, strain, d, policy) : m.updateIntact(strain, d, size, onset, policy);
   if (r.converged()) return r;
   ++retries;
   for (int level = 1; level <= levels; ++level) {
@@ -38,11 +39,12 @@ UpdateResult updateEnriched(const EnrichedBand& m, Voigt& strain, BandState* ban
     std::optional<BandState> b;
     if (band) b = *band;
     double dissipation = 0.0;
-    bool ok = true;
+    bool ok = true, released = false;
     for (int i = 0; i < n && ok; ++i) {
-      r = b ? m.updateCracked(*b, s, sub) : m.updateIntact(s, sub, size, b);
+      r = b ? m.updateCracked(*b, s, sub, policy) : m.updateIntact(s, sub, size, b, policy);
       ok = r.converged();
       dissipation += r.dissipation;
+      released = released || r.released;
     }
     if (!ok) continue;
     strain = s;
@@ -51,6 +53,7 @@ UpdateResult updateEnriched(const EnrichedBand& m, Voigt& strain, BandState* ban
     else
       onset = b;
     r.dissipation = dissipation;
+    r.released = released;
     return r;
   }
   return r;
@@ -63,10 +66,11 @@ void Solver::updateStresses() {
   const std::size_t count = p.size();
   const int levels = scene_.solver.substepLevels;
   double dissipated = 0.0;
-  long retries = 0;
+  long retries = 0, released = 0;
+  const SnapBackPolicy policy = scene_.solver.snapBack;
   Failure failure;
   std::vector<std::vector<Onset>> onsets(static_cast<std::size_t>(threads_));
-#pragma omp parallel num_threads(threads_) reduction(+ : dissipated, retries)
+#pragma omp parallel num_threads(threads_) reduction(+ : dissipated, retries, released)
   {
     std::vector<Onset>& mine = onsets[static_cast<std::size_t>(omp_get_thread_num())];
     // Dynamic: cracked points cost ~100 intact ones and cluster in space. Each point's update
@@ -96,7 +100,7 @@ void Solver::updateStresses() {
           std::optional<BandState> onset;
           try {
             r = updateEnriched(*k.enriched, p.strain[i], bi >= 0 ? &p.bands[static_cast<std::size_t>(bi)] : nullptr, d,
-                               size_, onset, levels, retries);
+                               size_, onset, levels, policy, retries);
           } catch (const std::exception& ex) {
             r.status = UpdateStatus::NotConverged;
             what = ex.what();
@@ -104,6 +108,7 @@ void Solver::updateStresses() {
           if (r.converged()) {
             p.stress[i] = r.stress;
             dissipated += r.dissipation * p.volume[i];
+            released += r.released ? 1 : 0;
             if (onset) mine.push_back({i, *onset});
           }
           break;
@@ -129,6 +134,7 @@ void Solver::updateStresses() {
   }
   dissipated_ += dissipated;
   substepped_ += retries;
+  released_ += released;
   if (failure.particle != std::numeric_limits<std::size_t>::max()) {
     const std::size_t i = failure.particle;
     std::ostringstream msg;
@@ -142,6 +148,21 @@ void Solver::updateStresses() {
       msg << "material update " << toString(failure.result.status) << " after " << (1 << levels)
           << " sub-steps, residual " << failure.result.residual << " MPa";
       if (!failure.what.empty()) msg << " (" << failure.what << ")";
+      // The full state, to reproduce the update outside the run (material/enriched_band.hpp).
+      msg.precision(17);
+      const auto v = [&](const auto& x) {
+        std::ostringstream o;
+        o.precision(17);
+        o << "[" << x[0];
+        for (Eigen::Index c = 1; c < x.size(); ++c) o << ", " << x[c];
+        return o.str() + "]";
+      };
+      msg << "; state: strain " << v(p.strain[i]) << ", increment " << v(p.strainIncrement[i]);
+      if (p.band[i] >= 0) {
+        const BandState& b = p.bands[static_cast<std::size_t>(p.band[i])];
+        msg << ", band {normal " << v(b.crackNormal) << ", jump " << v(b.jump) << ", onset_strain " << v(b.onsetStrain)
+            << ", integrity " << b.integrity << ", f " << b.volumeFraction << "}";
+      }
     }
     throw SimulationError(kind, step_ + 1, i, p.position[i], msg.str(), failure.result.status, failure.result.residual);
   }
