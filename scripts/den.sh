@@ -1,27 +1,69 @@
 #!/usr/bin/env bash
-# Nooru-Mohamed's double-edge-notched (DEN) panel, load path 4b, on up to three meshes with
-# ecm-mpm (run after the build: cmake -S . -B build -G Ninja && ninja -C build).
-# Usage: scripts/den.sh [OUT_DIR] [coarse|medium|fine|all|4a-coarse]   (default: results/den coarse)
-# (coarse, medium, fine: load path 4b, P_s = 10 kN; 4a-coarse: load path 4a, P_s = 5 kN, coarse)
-# Writes OUT_DIR/MESH/ (ecm-mpm's output folder per mesh, without VTU snapshots),
-# OUT_DIR/load_displacement.png (P against delta, all meshes), OUT_DIR/damage_MESH.png,
-# OUT_DIR/summary.json and the summary table on stdout, for every mesh whose output is in OUT_DIR
-# (run now or by an earlier call, so `den.sh DIR medium` adds to an earlier coarse run).
-# Units: mm, N, MPa, t, s. Threads: $DEN_THREADS (default 2).
+# Nooru-Mohamed's double-edge-notched (DEN) panel with ecm-mpm: load path 4b on three meshes with
+# the enriched model, the rate check, load path 4a, and the contrast of the paper (the same
+# meshes with an unregularised and a regularised smeared crack).
+# Run after the build (cmake -S . -B build -G Ninja && ninja -C build).
+# Usage: scripts/den.sh [OUT_DIR] [WHAT...]   (default: results/den coarse)
+#   WHAT: coarse | medium | fine            enriched, load path 4b (P_s = 10 kN), data/den/den-4b-MESH.yaml
+#         all                               the three enriched meshes
+#         halfrate  (= coarse-halfrate)     coarse at half the loading rate (data/den/den-4b-coarse-halfrate.yaml)
+#         4a-coarse                         load path 4a (P_s = 5 kN), coarse
+#         MESH-smeared | MESH-crackband     the 4b scene of MESH with data/materials/den-concrete-smeared.yaml
+#                                           (the band's law on the whole point) or den-concrete-crackband-MESH.yaml
+#                                           (crack band: E_p from G_F / H); the scene is written to OUT_DIR/scenes/
+#         contrast                          smeared and crackband on the three meshes
+#         report                            no run: only the tables and plots of what is in OUT_DIR
+# Writes OUT_DIR/RUN/ (ecm-mpm's output folder per run, without VTU snapshots),
+# OUT_DIR/load_displacement.png (P against delta, enriched runs), OUT_DIR/contrast.png (all models),
+# OUT_DIR/damage_RUN.png, OUT_DIR/crack_RUN.png, OUT_DIR/summary.json and the table on stdout, for
+# every run whose output is in OUT_DIR (run now or by an earlier call, so `den.sh DIR medium` adds
+# to an earlier coarse run).
+# Units: mm, N, MPa, t, s. Threads: $DEN_THREADS (default 2); binary: $DEN_BIN (default ./build/mpm/ecm-mpm).
 # Shell, awk and gnuplot only. A failed run (exit status 1) is kept in the table with its status.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-results/den}
-which=${2:-coarse}
+shift || true
+[[ $# -gt 0 ]] || set -- coarse
 threads=${DEN_THREADS:-2}
-case "$which" in
-  coarse | medium | fine | 4a-coarse) meshes=("$which") ;;
-  all) meshes=(coarse medium fine) ;;
-  *) echo "usage: scripts/den.sh [OUT_DIR] [coarse|medium|fine|all|4a-coarse]" >&2; exit 2 ;;
-esac
-bin=./build/mpm/ecm-mpm
+allRuns=(coarse medium fine coarse-halfrate 4a-coarse coarse-smeared medium-smeared fine-smeared
+         coarse-crackband medium-crackband fine-crackband)
+runs=()
+for w in "$@"; do
+  case "$w" in
+    all) runs+=(coarse medium fine) ;;
+    halfrate) runs+=(coarse-halfrate) ;;
+    contrast) runs+=(coarse-smeared medium-smeared fine-smeared coarse-crackband medium-crackband fine-crackband) ;;
+    report) ;;
+    coarse | medium | fine | coarse-halfrate | 4a-coarse | *-smeared | *-crackband)
+      [[ " ${allRuns[*]} " == *" $w "* ]] || { echo "error: unknown run '$w'" >&2; exit 2; }
+      runs+=("$w") ;;
+    *) echo "usage: scripts/den.sh [OUT_DIR] [coarse|medium|fine|all|halfrate|4a-coarse|MESH-smeared|MESH-crackband|contrast|report]..." >&2; exit 2 ;;
+  esac
+done
+bin=${DEN_BIN:-./build/mpm/ecm-mpm}
 [[ -x $bin ]] || { echo "error: $bin not built (cmake -S . -B build -G Ninja && ninja -C build)" >&2; exit 2; }
 mkdir -p "$out"
+
+# The scene file of a run: committed in data/den, or a smeared variant written to OUT_DIR/scenes
+# (the @material line of the 4b scene pointed at the other material file, by absolute path).
+sceneOf() {
+  local run=$1 mesh=${1%%-*} variant=${1#*-}
+  case "$run" in
+    coarse | medium | fine) echo "data/den/den-4b-$run.yaml" ;;
+    coarse-halfrate) echo "data/den/den-4b-coarse-halfrate.yaml" ;;
+    4a-coarse) echo "data/den/den-4a-coarse.yaml" ;;
+    *)
+      local material=den-concrete-smeared.yaml
+      [[ $variant == crackband ]] && material=den-concrete-crackband-$mesh.yaml
+      mkdir -p "$out/scenes"
+      sed -e "/@material/ s|{file: ../materials/den-concrete.yaml}|{file: $(realpath data/materials/$material)}|" \
+          -e "s|material: den-concrete}|material: ${material%.yaml}}|" \
+          -e "s|^name: den-4b-$mesh|name: den-4b-$run|" "data/den/den-4b-$mesh.yaml" >"$out/scenes/den-4b-$run.yaml"
+      grep -q "$material" "$out/scenes/den-4b-$run.yaml" || { echo "error: no @material line in den-4b-$mesh.yaml" >&2; return 1; }
+      echo "$out/scenes/den-4b-$run.yaml" ;;
+  esac
+}
 
 # history.csv column of a named header field (1-based).
 col() { head -1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }
@@ -29,9 +71,8 @@ col() { head -1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }
 # A number from summary.json (flat "key": value lines as io/json_summary writes them).
 jnum() { grep -m1 "\"$2\"" "$1" | sed 's/.*: *//; s/[",]//g'; }
 
-for m in "${meshes[@]}"; do
-  scene=data/den/den-4b-$m.yaml
-  [[ $m == 4a-coarse ]] && scene=data/den/den-4a-coarse.yaml
+for m in "${runs[@]}"; do
+  scene=$(sceneOf "$m") || exit 2
   echo "== DEN $m: $scene" >&2
   rm -f "$out/$m"/{history.csv,summary.json,particles_final.csv}  # no stale results if the run cannot start
   $bin "$scene" --out "$out/$m" --no-vtu --threads "$threads" -q
@@ -39,9 +80,9 @@ for m in "${meshes[@]}"; do
   [[ $rc -le 1 ]] || echo "error: ecm-mpm could not run $scene (status $rc)" >&2
 done
 
-# The results of every mesh in OUT_DIR (run now or before), coarse to fine.
+# The results of every run in OUT_DIR (run now or before), coarse to fine.
 rows=()
-for m in coarse medium fine 4a-coarse; do
+for m in "${allRuns[@]}"; do
   dir=$out/$m
   [[ -f $dir/summary.json && -f $dir/particles_final.csv ]] || continue
   h=$dir/history.csv
@@ -56,22 +97,30 @@ for m in coarse medium fine 4a-coarse; do
   # with the one seeded at its 180-degree image (seeds on a grid of spacing s = cell / 2; the
   # current positions differ from the seeds by far less than s / 2, and the geometry is point
   # symmetric, so every particle has its image); mean |D(x) - D(-x)| and mean D.
-  s=$(case $m in coarse | 4a-coarse) echo 1.25 ;; medium) echo 0.625 ;; fine) echo 0.3125 ;; esac)
+  s=$(case $m in coarse* | 4a-coarse) echo 1.25 ;; medium*) echo 0.625 ;; fine*) echo 0.3125 ;; esac)
   read -r asym meand <<<"$(awk -F, -v s="$s" 'function ix(v) { return int(v / s) }
     NR > 1 { n++; x[n] = $1; y[n] = $2; D[n] = $3; at[ix($1) "," ix($2)] = n }
     END { a = 0; c = 0; sd = 0
           for (i = 1; i <= n; i++) { sd += D[i]; k = (int(200 / s) - 1 - ix(x[i])) "," (int(200 / s) - 1 - ix(y[i]))
                                      if (k in at) { a += (D[i] > D[at[k]] ? D[i] - D[at[k]] : D[at[k]] - D[i]); c++ } }
           printf "%.4g %.4g\n", (c ? a / c : -1), (n ? sd / n : 0) }' "$dir/particles_final.csv")"
+  # ... and the fraction of cracked particles (D > 0) whose image is cracked too.
+  symc=$(awk -F, -v s="$s" 'function ix(v) { return int(v / s) }
+    NR > 1 { n++; x[n] = $1; y[n] = $2; D[n] = $3; at[ix($1) "," ix($2)] = n }
+    END { c = 0; m = 0
+          for (i = 1; i <= n; i++) { if (D[i] <= 0) continue; c++
+                                     k = (int(200 / s) - 1 - ix(x[i])) "," (int(200 / s) - 1 - ix(y[i]))
+                                     if ((k in at) && D[at[k]] > 0) m++ }
+          printf "%.4g\n", (c ? m / c : -1) }' "$dir/particles_final.csv")
   wall=$(jnum "$dir/summary.json" wall_time_s)
   status=$(jnum "$dir/summary.json" status)
   parts=$(jnum "$dir/summary.json" particles)
   bpu=$(jnum "$dir/summary.json" bytes_per_particle_uncracked)
   bpc=$(jnum "$dir/summary.json" bytes_per_particle_cracked)
-  rows+=("$m $status $peak $dpeak $diss $kmax $kend $wall $parts $bpu $bpc $asym $meand")
+  rows+=("$m $status $peak $dpeak $diss $kmax $kend $wall $parts $bpu $bpc $asym $meand $symc")
 
   # Damage map of this mesh.
-  ps=$(case $m in coarse | 4a-coarse) echo 0.35 ;; medium) echo 0.18 ;; fine) echo 0.09 ;; esac)
+  ps=$(case $m in coarse* | 4a-coarse) echo 0.35 ;; medium*) echo 0.18 ;; fine*) echo 0.09 ;; esac)
   cat >"$out/damage_$m.gp" <<EOF
 # Redraw: cd $(realpath "$out") && gnuplot damage_$m.gp
 set terminal pngcairo size 800,760 enhanced font 'Sans,11'
@@ -123,6 +172,7 @@ done
   sep=""
   for r in "${rows[@]}"; do
     set -- $r
+    [[ $1 == *-smeared || $1 == *-crackband ]] && continue  # in contrast.png
     h=$out/$1/history.csv
     printf "%s'%s/history.csv' every ::1 using %s:%s with lines lw 2 title '%s (%s)'" "$sep" "$1" "$(col "$h" top_uy_mm)" "$(col "$h" top_ry_N)" "$1" "$2"
     sep=", \\"$'\n'"     "
@@ -130,6 +180,46 @@ done
   echo
 } >"$out/load_displacement.gp"
 (cd "$out" && gnuplot load_displacement.gp) || echo "warning: load-displacement plot not drawn" >&2
+
+# All models together (enriched solid, smeared dashed, crack band dotted), when any contrast ran.
+if printf '%s\n' "${rows[@]}" | grep -q -e '-smeared ' -e '-crackband '; then
+  {
+    echo "# Redraw: cd $(realpath "$out") && gnuplot contrast.gp"
+    echo "set terminal pngcairo size 1000,640 enhanced font 'Sans,11' dashed"
+    echo "set output 'contrast.png'"
+    echo "set datafile separator ','"
+    echo "set grid; set key top right"
+    echo "set title 'DEN 4b: enriched (solid), unregularised smeared (dashed), crack band (dotted)'"
+    echo "set xlabel '{/Symbol d} (mm)'; set ylabel 'P (N)'"
+    printf "plot "
+    sep=""
+    for r in "${rows[@]}"; do
+      set -- $r
+      case $1 in coarse | medium | fine) dt=1 ;; *-smeared) dt=2 ;; *-crackband) dt=3 ;; *) continue ;; esac
+      color=$(case $1 in coarse*) echo '#1b9e77' ;; medium*) echo '#d95f02' ;; fine*) echo '#7570b3' ;; esac)
+      h=$out/$1/history.csv
+      printf "%s'%s/history.csv' every ::1 using %s:%s with lines lw 2 dt %s lc rgb '%s' title '%s'" "$sep" "$1" "$(col "$h" top_uy_mm)" "$(col "$h" top_ry_N)" "$dt" "$color" "$1"
+      sep=", \\"$'\n'"     "
+    done
+    echo
+  } >"$out/contrast.gp"
+  (cd "$out" && gnuplot contrast.gp) || echo "warning: contrast plot not drawn" >&2
+fi
+
+# Mesh objectivity per model: spread (max - min) / mean of the peak load and of the dissipated
+# energy over the meshes that completed.
+families=()
+for fam in enriched smeared crackband; do
+  read -r n pk ds <<<"$(for r in "${rows[@]}"; do
+      set -- $r
+      case $fam:$1 in enriched:coarse | enriched:medium | enriched:fine | smeared:*-smeared | crackband:*-crackband)
+        [[ $2 == completed ]] && echo "$3 $5" ;;
+      esac
+    done | awk 'NR == 1 { pmin = pmax = $1; dmin = dmax = $2 }
+                { n++; ps += $1; ds += $2; if ($1 < pmin) pmin = $1; if ($1 > pmax) pmax = $1; if ($2 < dmin) dmin = $2; if ($2 > dmax) dmax = $2 }
+                END { if (n) printf "%d %.4g %.4g\n", n, (pmax - pmin) / (ps / n), (dmax - dmin) / (ds / n); else print "0 0 0" }')"
+  [[ $n -gt 1 ]] && families+=("$fam $n $pk $ds")
+done
 
 # The table (stdout) and summary.json.
 {
@@ -140,18 +230,30 @@ done
   for i in "${!rows[@]}"; do
     set -- ${rows[$i]}
     sep=$([[ $i -lt $((${#rows[@]} - 1)) ]] && echo "," || echo "")
-    printf '    "%s": {"status": "%s", "peak_load_N": %s, "delta_at_peak_mm": %s, "dissipated_Nmm": %s, "kinetic_over_external_max_tension": %s, "kinetic_over_external_end": %s, "wall_time_s": %s, "particles": %s, "bytes_per_particle_uncracked": %s, "bytes_per_particle_cracked": %s, "damage_point_symmetry_mean_abs_diff": %s, "mean_damage": %s}%s\n' \
-      "$1" "$2" "$3" "$4" "$5" "$6" "$7" "$8" "$9" "${10}" "${11}" "${12}" "${13}" "$sep"
+    printf '    "%s": {"status": "%s", "peak_load_N": %s, "delta_at_peak_mm": %s, "dissipated_Nmm": %s, "kinetic_over_external_max_tension": %s, "kinetic_over_external_end": %s, "wall_time_s": %s, "particles": %s, "bytes_per_particle_uncracked": %s, "bytes_per_particle_cracked": %s, "damage_point_symmetry_mean_abs_diff": %s, "mean_damage": %s, "cracked_with_cracked_image": %s}%s\n' \
+      "$1" "$2" "$3" "$4" "$5" "$6" "$7" "$8" "$9" "${10}" "${11}" "${12}" "${13}" "${14}" "$sep"
+  done
+  echo "  },"
+  echo "  \"mesh_objectivity\": {"
+  for i in "${!families[@]}"; do
+    set -- ${families[$i]}
+    sep=$([[ $i -lt $((${#families[@]} - 1)) ]] && echo "," || echo "")
+    printf '    "%s": {"meshes": %s, "peak_load_spread": %s, "dissipated_spread": %s}%s\n' "$1" "$2" "$3" "$4" "$sep"
   done
   echo "  }"
   echo "}"
 } >"$out/summary.json"
-printf "\n%-9s %-10s %10s %10s %12s %10s %10s %9s %9s %8s %8s %9s\n" mesh status "peak P(N)" "delta(mm)" "dissip(Nmm)" "KE/W tmax" "KE/W end" "time(s)" particles "B/pt" "B/crk" "sym|dD|"
+printf "\n%-17s %-10s %10s %10s %12s %10s %10s %9s %9s %8s %8s %8s %8s\n" run status "peak P(N)" "delta(mm)" "dissip(Nmm)" "KE/W tmax" "KE/W end" "time(s)" particles "B/pt" "B/crk" "sym|dD|" "sym crk"
 for r in "${rows[@]}"; do
   set -- $r
-  printf "%-9s %-10s %10.1f %10.4f %12.2f %10.3g %10.3g %9.1f %9s %8s %8s %9.3g\n" "$1" "$2" "$3" "$4" "$5" "$6" "$7" "$8" "$9" "${10}" "${11}" "${12}"
+  printf "%-17s %-10s %10.1f %10.4f %12.2f %10.3g %10.3g %9.1f %9s %8s %8s %8.3g %8.3g\n" "$1" "$2" "$3" "$4" "$5" "$6" "$7" "$8" "$9" "${10}" "${11}" "${12}" "${14}"
+done
+for f in "${families[@]}"; do
+  set -- $f
+  printf "mesh objectivity, %-9s (%s meshes): peak load spread %.1f %%, dissipated energy spread %.1f %%\n" "$1" "$2" "$(awk -v v="$3" 'BEGIN { print 100 * v }')" "$(awk -v v="$4" 'BEGIN { print 100 * v }')"
 done
 echo "(peak P and delta from the output rows of history.csv; KE/W: kinetic over external work,"
 echo " tmax: the largest while delta > 0 (tension phase), end: at the end;"
-echo " sym|dD|: mean |D(x) - D(rotated x)| over particles, 180 degrees about (100, 100))"
-echo "written: $out/summary.json $out/load_displacement.png $(cd "$out" && ls damage_*.png crack_*.png 2>/dev/null | sed "s|^|$out/|" | tr '\n' ' ')"
+echo " sym|dD|: mean |D(x) - D(rotated x)| over particles, 180 degrees about (100, 100);"
+echo " sym crk: fraction of cracked particles whose rotated image is cracked; spread: (max - min) / mean)"
+echo "written: $out/summary.json $out/load_displacement.png $(cd "$out" && ls contrast.png damage_*.png crack_*.png 2>/dev/null | sed "s|^|$out/|" | tr '\n' ' ')"
