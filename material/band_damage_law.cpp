@@ -25,12 +25,14 @@ BandResponse BandDamageLaw::evaluate(const LoadingSurface& surface, const Voigt&
   r.drivingForce = y.value;
   r.drivingForceRate = y.stressGradient.transpose() * stiffness_;
   r.loading = y.value > threshold;
+  PoweredIntegrity x{x0, 0.0};
   if (r.loading)
-    r.integrity = solveIntegrity(law_, y.value, x0);
+    x = solveIntegrity(law_, y.value, {x0, surface.integrityPower > 0.0 ? surface.integrityPower : std::pow(x0, law_.softeningExponent)});
+  else if (surface.envelope && y.value > onsetY_)
+    x = solveIntegrity(law_, y.value, {1.0, 1.0});  // below the surface: the healed envelope
   else if (surface.envelope)
-    r.integrity = y.value > onsetY_ ? solveIntegrity(law_, y.value, 1.0) : 1.0;  // below the surface: healed envelope
-  else
-    r.integrity = x0;
+    x = {1.0, 1.0};
+  r.integrity = x.x;
   r.stress = r.integrity * effective;  // Eq. (11)
   const bool onSurface = y.value >= threshold * (1.0 - 1e-12) && y.value > 0.0;
   const bool onEnvelope = surface.envelope && y.value > onsetY_;
@@ -38,7 +40,7 @@ BandResponse BandDamageLaw::evaluate(const LoadingSurface& surface, const Voigt&
     // dx/deps = (dx/dY) (dY/dsigma) a, with dx/dY = 1 / F'(x)
     // At an integrity near the underflow limit, dF/dx overflows (x^(n-1)); the damage then
     // no longer changes the (vanishing) stress: its contribution to the tangent is zero.
-    const double slope = damageFunctionSlope(law_, r.integrity);
+    const double slope = x.xn > 0.0 ? damageFunctionSlope(law_, r.integrity, x.xn) : damageFunctionSlope(law_, r.integrity);
     const double dxdy = std::isfinite(slope) && slope != 0.0 ? 1.0 / slope : 0.0;
     const Eigen::RowVector3d dxde = dxdy * r.drivingForceRate;
     r.tangent = r.integrity * stiffness_ + effective * dxde;

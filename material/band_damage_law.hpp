@@ -1,6 +1,8 @@
 #pragma once
 // The band's damage law, Eqs. (11)-(13): sigma_L = (1 - D) a_L : eps_L, damage driven by the
 // positive part of the effective stress, F(D) of Eq. (13), D irreversible.
+#include <cmath>
+
 #include "material/damage_function.hpp"
 #include "material/linear_elastic.hpp"
 
@@ -38,15 +40,20 @@ class BandDamageLaw {
 
   // The damage threshold at the start of an increment: Y <= F(x0), Eq. (12).
   struct LoadingSurface {
-    double integrity;       // x0
-    double threshold;       // F(x0)
-    bool envelope = false;  // evaluate on the monotonic envelope x = F^-1(Y), also below the surface
+    double integrity;           // x0
+    double threshold;           // F(x0)
+    bool envelope = false;      // evaluate on the monotonic envelope x = F^-1(Y), also below the surface
+    double integrityPower = 0;  // x0^n (0: not computed; only loading evaluations need it)
   };
-  LoadingSurface loadingSurface(double integrity) const { return {integrity, damageFunction(law_, integrity)}; }
+  LoadingSurface loadingSurface(double integrity) const {
+    return {integrity, damageFunction(law_, integrity), false, std::pow(integrity, law_.softeningExponent)};
+  }
   // The same surface, but evaluate() follows the monotonic loading envelope: x solves F(x) = Y
   // without the irreversibility cap, with the loading tangent. Smooth across the surface, it is
   // the branch a damage corrector iterates on (no loading/unloading kink inside Newton).
-  LoadingSurface envelope(double integrity) const { return {integrity, damageFunction(law_, integrity), true}; }
+  LoadingSurface envelope(double integrity) const {
+    return {integrity, damageFunction(law_, integrity), true, std::pow(integrity, law_.softeningExponent)};
+  }
 
   // Pure: does not change any state. The surface is that of the start of the increment.
   // With loadingTangent, a point exactly on the loading surface gets the one-sided loading

@@ -25,6 +25,14 @@ double damageFunctionSlope(const DamageLawParams& p, double integrity);
 double integrityForDrivingForce(const DamageLawParams& p, double y, double x0 = 1.0);
 // The same solve without the irreversibility check: requires y > F(x0).
 double solveIntegrity(const DamageLawParams& p, double y, double x0);
+// The same with x0^n given and x^n returned as well (each spares a pow in the hot path).
+struct PoweredIntegrity {
+  double x;   // integrity
+  double xn;  // x^n
+};
+PoweredIntegrity solveIntegrity(const DamageLawParams& p, double y, const PoweredIntegrity& start);
+// dF/dx with x^n given.
+double damageFunctionSlope(const DamageLawParams& p, double integrity, double integrityPower);
 
 // Energy dissipated per unit volume of band while the integrity drops from xOld to xNew
 // (xNew <= xOld): int_{D_old}^{D_new} F dD (during loading Y = F). Gauss-Legendre in
