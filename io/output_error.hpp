@@ -8,8 +8,9 @@ namespace ecm::io {
 
 struct OutputError : std::runtime_error {
   OutputError(const std::filesystem::path& where, const std::string& reason)
-      : std::runtime_error("cannot write '" + where.string() + "': " + reason), path(where) {}
+      : std::runtime_error("cannot write '" + where.string() + "': " + reason), path(where), reason(reason) {}
   std::filesystem::path path;
+  std::string reason;
 };
 
 }  // namespace ecm::io

@@ -2,6 +2,7 @@
 // velocity conditions with their reactions, and the loads.
 #include <cmath>
 
+#include "mpm/ordered_sum.hpp"
 #include "mpm/solver.hpp"
 
 namespace ecm::mpm {
@@ -26,15 +27,13 @@ double prescribed(const ComponentCondition& c, double t, double dt) {
 void Solver::updateGrid() {
   const int nodes = scene_.grid.nodeCount();
   const double dt = dt_, viscous = scene_.solver.damping.viscous, local = scene_.solver.damping.local;
-  double dampingWork = 0.0;
-#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : dampingWork)
-  for (int node = 0; node < nodes; ++node) {
+  damping_ += orderedSum(threads_, nodes, 0.0, [&](long node) {
     const auto n = static_cast<std::size_t>(node);
     const double m = grid_.mass[n];
     if (!(m > 0.0)) {
       grid_.velocity[n].setZero();
       grid_.velocityChange[n].setZero();
-      continue;
+      return 0.0;
     }
     const Vec2 v = grid_.momentum[n] / m;
     const Vec2 f = grid_.force[n] + grid_.externalForce[n];
@@ -48,15 +47,13 @@ void Solver::updateGrid() {
     const Vec2 vNew = v + dt / m * fd;
     grid_.velocity[n] = vNew;
     grid_.velocityChange[n] = vNew - v;
-    dampingWork += dt * (f - fd).dot(vNew);
-  }
-  damping_ += dampingWork;
+    return dt * (f - fd).dot(vNew);  // work of the damping forces
+  });
   applyVelocityConditions(true);
   if (!scene_.loads.empty() || scene_.solver.gravity.squaredNorm() > 0.0) {
-    double work = 0.0;
-#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : work)
-    for (int node = 0; node < nodes; ++node)
-      work += grid_.externalForce[static_cast<std::size_t>(node)].dot(grid_.velocity[static_cast<std::size_t>(node)]);
+    const double work = orderedSum(threads_, nodes, 0.0, [&](long node) {
+      return grid_.externalForce[static_cast<std::size_t>(node)].dot(grid_.velocity[static_cast<std::size_t>(node)]);
+    });
     externalWork_ += dt * work;
   }
 }

@@ -1,24 +1,75 @@
 // ecm-mpm: runs an MPM scene (YAML) and writes its output folder.
-//   ecm-mpm SCENE.yaml [-o|--out DIR] [--threads N] [--no-vtu] [--no-plot] [--quiet]
-// Exit status: 0 completed, 1 the run failed (see summary.json), 2 bad input or output folder.
+//   ecm-mpm SCENE.yaml [-o|--out DIR] [--threads N] [--no-vtu] [--no-plot] [--quiet] [--max-steps N]
+//   ecm-mpm SCENE.yaml --restart DIR [...]      continue the run of DIR from DIR/checkpoint.bin
+// SIGINT / SIGTERM stop the run after the current step with a checkpoint (a second one kills it).
+// Exit status: 0 completed, 1 the run failed (see summary.json), 2 bad input, output folder or
+// checkpoint, 3 stopped before the end with a checkpoint (signal or --max-steps): resume it.
 #include <CLI/CLI.hpp>
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <exception>
+#include <fstream>
+#include <iterator>
 
+#include "io/checksum.hpp"
 #include "io/output_error.hpp"
 #include "io/yaml_input.hpp"
+#include "mpm/checkpoint.hpp"
 #include "mpm/run.hpp"
 #include "mpm/scene_yaml.hpp"
+
+namespace {
+
+std::atomic<bool> stopRequested{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
+
+extern "C" void onStopSignal(int) { stopRequested.store(true, std::memory_order_relaxed); }
+
+// SA_RESETHAND: a second signal takes the default action (the user insists: no checkpoint).
+void installStopHandler() {
+  struct sigaction sa = {};
+  sa.sa_handler = onStopSignal;
+  sigemptyset(&sa.sa_mask);
+  sa.sa_flags = SA_RESTART | SA_RESETHAND;
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+  // A file size limit (ulimit -f) then fails the write (EFBIG), reported like a full disk,
+  // instead of killing the run.
+  std::signal(SIGXFSZ, SIG_IGN);
+}
+
+// A path as one shell word (quoted when it needs to be), for the resume command.
+std::string shellWord(const std::string& s) {
+  if (!s.empty() && s.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-./+=:,@") ==
+                        std::string::npos)
+    return s;
+  std::string q = "'";
+  for (const char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::uint64_t fileHash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return ecm::io::fnv1a64(text);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"ecm-mpm: explicit MPM with the enriched constitutive model (units: mm, N, MPa, t, s)"};
   std::string scenePath;
   ecm::mpm::RunOptions options;
-  std::string outDir;
+  std::string outDir, restartDir;
   bool noVtu = false, noPlot = false, quiet = false;
   app.add_option("scene", scenePath, "scene file (YAML)")->required()->check(CLI::ExistingFile);
   app.add_option("-o,--output,--out", outDir, "output folder (default: SCENE-NAME-out next to the working folder)");
+  app.add_option("--restart", restartDir,
+                 "continue the run of this output folder from its checkpoint.bin (with the same scene file)");
   app.add_option("-t,--threads", options.threads, "OpenMP threads (0: default)")->check(CLI::NonNegativeNumber);
+  app.add_option("--max-steps", options.maxSteps, "stop with a checkpoint once the run has made N steps (from t = 0)")
+      ->check(CLI::PositiveNumber);
   app.add_flag("--no-vtu", noVtu, "do not write VTU particle snapshots");
   app.add_flag("--no-plot", noPlot, "do not render the load-displacement PNG");
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
@@ -26,22 +77,47 @@ int main(int argc, char** argv) {
 
   try {
     const ecm::mpm::Scene scene = ecm::mpm::loadSceneFile(scenePath);
+    if (!restartDir.empty()) {
+      const auto normal = [](const std::string& p) { return std::filesystem::path(p).lexically_normal(); };
+      if (!outDir.empty() && normal(outDir) != normal(restartDir)) {
+        std::fprintf(stderr, "error: --restart %s continues that folder; --out %s names another one\n",
+                     restartDir.c_str(), outDir.c_str());
+        return 2;
+      }
+      outDir = restartDir;
+      options.restart = true;
+    }
     options.outputDir = outDir.empty() ? std::filesystem::path(scene.name + "-out") : std::filesystem::path(outDir);
     options.snapshots = !noVtu;
     options.plot = !noPlot;
     options.progress = !quiet;
+    options.sceneHash = fileHash(scenePath);
+    options.stop = &stopRequested;
+    options.resumeCommand = "ecm-mpm " + shellWord(scenePath) + " --restart " + shellWord(options.outputDir.string());
+    installStopHandler();
     const ecm::mpm::RunResult r = ecm::mpm::runScene(scene, options);
     std::fprintf(stderr, "%s: %ld steps, %zu particles, peak load %.6g N, %.2f s -> %s\n",
-                 r.completed ? "completed" : "FAILED", r.steps, r.particles, r.peakLoad, r.wallTime,
-                 options.outputDir.string().c_str());
+                 r.completed ? "completed" : (r.stopped ? "STOPPED" : "FAILED"), r.steps, r.particles, r.peakLoad,
+                 r.wallTime, options.outputDir.string().c_str());
+    if (r.stopped) {
+      std::fprintf(stderr, "stopped at step %ld (%s); checkpoint %s\nresume with: %s\n", r.steps,
+                   stopRequested.load() ? "signal" : "--max-steps", r.checkpoint.string().c_str(),
+                   options.resumeCommand.c_str());
+      return 3;
+    }
     if (!r.completed) {
       std::fprintf(stderr, "error: %s\n", r.error.c_str());
+      if (!r.checkpoint.empty())
+        std::fprintf(stderr, "the last checkpoint is %s (resume with: %s)\n", r.checkpoint.string().c_str(),
+                     options.resumeCommand.c_str());
       return 1;
     }
     return 0;
   } catch (const ecm::io::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
   } catch (const ecm::io::OutputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+  } catch (const ecm::mpm::CheckpointError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s: %s\n", scenePath.c_str(), e.what());

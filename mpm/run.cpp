@@ -3,14 +3,19 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
+#include <sstream>
+#include <system_error>
 #include <nlohmann/json.hpp>
 
 #include "io/csv_writer.hpp"
 #include "io/gnuplot.hpp"
 #include "io/json_summary.hpp"
 #include "io/output_dir.hpp"
+#include "io/output_error.hpp"
 #include "io/progress.hpp"
+#include "mpm/checkpoint.hpp"
 #include "mpm/solver.hpp"
 #include "mpm/vtu_writer.hpp"
 
@@ -80,14 +85,26 @@ void plot(const Scene& scene, const std::filesystem::path& dir) {
 
 // The final state of every particle (x, y, damage, material id, normal opening of the band), for
 // damage and crack maps.
+// Written as PATH.tmp, then renamed: a restart rewrites it, and a reader never sees half of it.
 void writeParticles(const Solver& s, const std::filesystem::path& path) {
-  io::CsvWriter csv(path, {"x_mm", "y_mm", "damage", "material", "opening_mm"});
-  const Particles& p = s.particles();
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const double opening = p.band[i] >= 0 ? p.bands[static_cast<std::size_t>(p.band[i])].normalJump() : 0.0;
-    csv.row({p.position[i][0], p.position[i][1], s.damage(i), static_cast<double>(p.material[i]), opening});
+  std::filesystem::path tmp = path;
+  tmp += ".tmp";
+  try {
+    io::CsvWriter csv(tmp, {"x_mm", "y_mm", "damage", "material", "opening_mm"});
+    const Particles& p = s.particles();
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const double opening = p.band[i] >= 0 ? p.bands[static_cast<std::size_t>(p.band[i])].normalJump() : 0.0;
+      csv.row({p.position[i][0], p.position[i][1], s.damage(i), static_cast<double>(p.material[i]), opening});
+    }
+    csv.close();
+  } catch (const io::OutputError& e) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw io::OutputError(path, e.reason);
   }
-  csv.close();
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw io::OutputError(path, "rename from " + tmp.filename().string() + " failed: " + ec.message());
 }
 
 // The damage map of particles_final.csv: one square point per particle, coloured by damage.
@@ -119,14 +136,46 @@ std::vector<std::string> historyColumns(const Scene& scene) {
 }
 
 RunResult runScene(const Scene& scene, const RunOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
-  auto seconds = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  auto seconds = [&](Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); };
   Solver solver(scene, options.threads);  // throws on an invalid scene, before any output
-  const std::filesystem::path dir = io::prepareOutputDir(options.outputDir);
+  const std::filesystem::path& dir = options.outputDir;
+  const std::filesystem::path checkpointFile = checkpointPath(dir);
+  RunResult result;
+  result.particles = solver.particles().size();
 
-  io::CsvWriter history(dir / "history.csv", historyColumns(scene));
+  // A restart reads its checkpoint before anything in the folder is touched.
+  RunBookkeeping book;
+  if (options.restart) {
+    book = readCheckpoint(checkpointFile, solver, options.sceneHash);
+    result.restartedFrom = solver.step();
+    if (book.threads != solver.threads())
+      std::fprintf(stderr,
+                   "warning: %s was written on %d threads, the run goes on on %d: the results agree with an "
+                   "uninterrupted run to round-off, not bitwise\n",
+                   checkpointFile.string().c_str(), book.threads, solver.threads());
+  }
+  io::prepareOutputDir(dir);
+  std::unique_ptr<io::CsvWriter> history;
+  if (options.restart) {
+    try {
+      history = std::make_unique<io::CsvWriter>(dir / "history.csv", historyColumns(scene), book.history);
+    } catch (const io::OutputError&) {
+      throw;
+    } catch (const std::runtime_error& e) {
+      throw CheckpointError("cannot continue from checkpoint '" + checkpointFile.string() + "': " + e.what());
+    }
+  } else {
+    std::error_code ignored;  // a checkpoint of an earlier run in this folder no longer applies
+    std::filesystem::remove(checkpointFile, ignored);
+    history = std::make_unique<io::CsvWriter>(dir / "history.csv", historyColumns(scene));
+  }
   std::unique_ptr<VtuSeries> snapshots;
-  if (options.snapshots) snapshots = std::make_unique<VtuSeries>(dir);
+  if (options.snapshots) {
+    snapshots = std::make_unique<VtuSeries>(dir);
+    if (options.restart) snapshots->resume(book.snapshotTimes);
+  }
   std::unique_ptr<io::Progress> progress;
   if (options.progress) {
     io::Progress::Options o;
@@ -134,11 +183,9 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
     progress = std::make_unique<io::Progress>(scene.endTime, o);
   }
 
-  RunResult result;
-  result.particles = solver.particles().size();
   auto output = [&] {
-    history.row(historyRow(solver));
-    history.flush();
+    history->row(historyRow(solver));
+    history->flush();
     if (snapshots) snapshots->add(solver);
   };
   // The peak of the driven conditions' reactions (all conditions' if none is driven) and loads.
@@ -151,35 +198,110 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
     for (const auto& l : solver.loads()) result.peakLoad = std::max(result.peakLoad, l.applied.norm());
   };
 
-  output();
   double nextOutput = scene.outputInterval;
+  // Particle snapshots (particles_t<time>.csv) at the scene's times, the first step at or past each;
+  // after a restart, those already behind the checkpoint are done.
+  std::size_t nextSnapshot = 0;
+  auto particleSnapshots = [&] {
+    const auto& times = scene.particleSnapshots;
+    for (; nextSnapshot < times.size() && solver.time() >= times[nextSnapshot] - 0.5 * solver.timeStep(); ++nextSnapshot) {
+      std::ostringstream name;
+      name << "particles_t" << times[nextSnapshot] << ".csv";
+      writeParticles(solver, dir / name.str());
+    }
+  };
+  long checkpointStep = -1;  // the step of the checkpoint on disk
+  auto lastCheckpoint = start;
+  if (options.restart) {
+    while (nextSnapshot < scene.particleSnapshots.size() &&
+           solver.time() >= scene.particleSnapshots[nextSnapshot] - 0.5 * solver.timeStep())
+      ++nextSnapshot;
+    nextOutput = book.nextOutput;
+    result.peakLoad = book.peakLoad;
+    checkpointStep = solver.step();
+  }
+  auto checkpoint = [&] {
+    if (checkpointStep == solver.step()) return;
+    history->flush();
+    book.nextOutput = nextOutput;
+    book.peakLoad = result.peakLoad;
+    book.history = {history->bytes(), history->digest(), history->rows()};
+    if (snapshots) book.snapshotTimes = snapshots->times();
+    writeCheckpoint(checkpointFile, solver, book, options.sceneHash);
+    checkpointStep = solver.step();
+    lastCheckpoint = Clock::now();
+    ++result.checkpoints;
+  };
+  const CheckpointSettings& every = scene.checkpoint;
+  auto stopRequested = [&] {
+    return (options.stop && options.stop->load(std::memory_order_relaxed)) ||
+           (options.maxSteps > 0 && solver.step() >= options.maxSteps);
+  };
+  // A half-step tolerance so that round-off in the accumulated time does not add a step.
+  auto finished = [&] { return solver.time() >= scene.endTime - 0.5 * solver.timeStep(); };
+
+  bool outputFailed = false;
   try {
-    // A half-step tolerance so that round-off in the accumulated time does not add a step.
-    while (solver.time() < scene.endTime - 0.5 * solver.timeStep()) {
+    if (!options.restart) output();
+    while (!finished()) {
+      if (stopRequested()) {
+        checkpoint();
+        result.stopped = true;
+        break;
+      }
       solver.advance();
       trackPeak();
-      const bool last = solver.time() >= scene.endTime - 0.5 * solver.timeStep();
-      if (last || (scene.outputInterval > 0.0 && solver.time() >= nextOutput - 0.5 * solver.timeStep())) {
+      particleSnapshots();
+      if (finished() || (scene.outputInterval > 0.0 && solver.time() >= nextOutput - 0.5 * solver.timeStep())) {
         output();
-        while (nextOutput <= solver.time() + 0.5 * solver.timeStep()) nextOutput += scene.outputInterval;
+        while (scene.outputInterval > 0.0 && nextOutput <= solver.time() + 0.5 * solver.timeStep())
+          nextOutput += scene.outputInterval;  // (output_interval 0: the last step only)
       }
       if (progress) progress->update(solver.time());
+      if (!finished() && ((every.everySteps > 0 && solver.step() % every.everySteps == 0) ||
+                          (every.everyMinutes > 0.0 && seconds(lastCheckpoint) >= 60.0 * every.everyMinutes)))
+        checkpoint();
     }
-    result.completed = true;
+    result.completed = !result.stopped;
   } catch (const SimulationError& e) {
     result.error = e.what();
-    output();  // the state at the failure, for a look at what went wrong
+    try {
+      output();  // the state at the failure, for a look at what went wrong
+    } catch (const io::OutputError& o) {
+      result.error += std::string("; then: ") + o.what();
+      outputFailed = true;
+    }
+  } catch (const io::OutputError& e) {
+    // A file could not be written (full disk?): what is on disk stays readable (history.csv ends
+    // with its last whole row, the other files are replaced atomically). Nothing more is written
+    // but, if it can be, the summary.
+    result.error = std::string(e.what()) + " (at step " + std::to_string(solver.step()) + ")";
+    outputFailed = true;
   }
   if (progress) progress->finish();
-  history.close();
+  // What goes wrong from here on is added to the result; what was written stays readable.
+  auto outputFailure = [&](const io::OutputError& o) {
+    result.error = result.error.empty() ? o.what() : result.error + "; then: " + o.what();
+    result.completed = result.stopped = false;
+    outputFailed = true;
+  };
+  try {
+    if (!outputFailed) history->close();
+    if (!outputFailed) writeParticles(solver, dir / "particles_final.csv");  // also after a failure or a stop
+  } catch (const io::OutputError& o) {
+    outputFailure(o);
+  }
   result.steps = solver.step();
-  result.wallTime = seconds();
+  result.wallTime = seconds(start);
+  std::error_code ec;
+  if (result.completed) std::filesystem::remove(checkpointFile, ec);  // it describes an unfinished run
+  if (std::filesystem::exists(checkpointFile, ec)) result.checkpoint = checkpointFile;
 
   const Energies e = solver.energies();
   const Particles& p = solver.particles();
   nlohmann::json summary = {
       {"scene", scene.name},
-      {"status", result.completed ? "completed" : "failed"},
+      {"status", result.completed ? "completed" : (result.stopped ? "stopped" : "failed")},
       {"peak_load", result.peakLoad},
       {"wall_time_s", result.wallTime},
       {"steps", result.steps},
@@ -194,15 +316,28 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
       {"shape_function", toString(scene.solver.shapeFunction)},
       {"substepped_updates", solver.substepped()},
       {"snap_back_releases", solver.snapBackReleases()},
-      {"particle_updates_per_s", result.wallTime > 0.0 ? static_cast<double>(result.particles) * result.steps / result.wallTime : 0.0},
+      {"particle_updates_per_s",  // of this run's steps (after a restart: those since the checkpoint)
+       result.wallTime > 0.0 ? static_cast<double>(result.particles) *
+                                   static_cast<double>(result.steps - std::max(result.restartedFrom, 0L)) / result.wallTime
+                             : 0.0},
       {"energies_Nmm",
        {{"kinetic", e.kinetic}, {"strain", e.strain}, {"external_work", e.externalWork}, {"dissipated", e.dissipated},
         {"damping", e.damping}}},
+      {"checkpoints_written", result.checkpoints},
       {"units", "mm, N, MPa, t, s"}};
-  if (!result.completed) summary["error"] = result.error;
-  writeParticles(solver, dir / "particles_final.csv");  // also after a failure: the state at it
-  io::writeJsonSummary(summary, dir / "summary.json");
-  if (options.plot) {
+  if (!result.completed && !result.stopped) summary["error"] = result.error;
+  if (result.restartedFrom >= 0) summary["restarted_from_step"] = result.restartedFrom;
+  if (!result.checkpoint.empty()) {
+    summary["checkpoint"] = result.checkpoint.string();
+    summary["checkpoint_step"] = checkpointStep;
+  }
+  if (result.stopped && !options.resumeCommand.empty()) summary["resume"] = options.resumeCommand;
+  try {
+    io::writeJsonSummary(summary, dir / "summary.json");
+  } catch (const io::OutputError& o) {  // the old summary, if any, stays whole
+    outputFailure(o);
+  }
+  if (!outputFailed && options.plot && !result.stopped) {
     plot(scene, dir);
     plotDamage(scene, solver.particles().size(), dir);
   }

@@ -40,6 +40,13 @@ struct SolverSettings {
   SnapBackPolicy snapBack = SnapBackPolicy::Release;
 };
 
+// When a run writes its checkpoint (mpm/checkpoint.hpp) besides on a stop request: every N steps
+// and/or every M minutes of wall time (0: never).
+struct CheckpointSettings {
+  long everySteps = 0;
+  double everyMinutes = 0.0;
+};
+
 struct Scene {
   std::string name = "scene";
   Grid grid;
@@ -52,6 +59,8 @@ struct Scene {
   SolverSettings solver;
   double endTime = 0.0;         // s
   double outputInterval = 0.0;  // s between output steps (0: only the first and last)
+  std::vector<double> particleSnapshots;  // s, increasing: particles_t<time>.csv at each (maps of states)
+  CheckpointSettings checkpoint;
 
   // Throws std::invalid_argument with a message naming what is wrong.
   void validate() const;

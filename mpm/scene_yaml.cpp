@@ -227,6 +227,17 @@ Load readLoad(const YamlMap& m) {
   return l;
 }
 
+CheckpointSettings readCheckpoint(const YamlMap& m) {
+  CheckpointSettings c;
+  c.everySteps = m.getOr<int>("every_steps", 0, Range::closed(1.0, 2147483647.0));
+  c.everyMinutes = m.getOr<double>("every_minutes", 0.0, Range::positive());
+  if (!m.has("every_steps") && !m.has("every_minutes")) {
+    m.finish();  // an unknown key says more than "nothing given"
+    m.failHere("needs every_steps: N and/or every_minutes: M");
+  }
+  return c;
+}
+
 }  // namespace
 
 Scene readScene(const YamlMap& m) {
@@ -261,6 +272,15 @@ Scene readScene(const YamlMap& m) {
   if (m.has("solver")) s.solver = readSolver(m.child("solver"));
   s.endTime = m.get<double>("end_time", Range::positive());
   s.outputInterval = m.getOr<double>("output_interval", 0.0, Range::nonNegative());
+  if (m.has("particle_snapshots")) {
+    s.particleSnapshots = m.getVector("particle_snapshots", 0, Range::positive());
+    for (std::size_t i = 0; i < s.particleSnapshots.size(); ++i) {
+      if (i > 0 && !(s.particleSnapshots[i] > s.particleSnapshots[i - 1]))
+        m.fail("particle_snapshots", "times must increase");
+      if (s.particleSnapshots[i] > s.endTime) m.fail("particle_snapshots", "a time after end_time");
+    }
+  }
+  if (m.has("checkpoint")) s.checkpoint = readCheckpoint(m.child("checkpoint"));
   if (m.has("conditions"))
     for (const YamlMap& c : m.sequence("conditions")) s.conditions.push_back(readCondition(c, s.grid));
   if (m.has("loads"))

@@ -41,6 +41,12 @@
 //                               # onto its stable branch (counted in summary.json) or stops the run
 //   end_time: 1e-3              # s
 //   output_interval: 1e-5       # s (0: first and last step only)
+//   particle_snapshots: [2e-4]  # s, increasing, optional: particles_t<time>.csv (x, y, damage,
+//                               # material, opening) at the first step at or past each time
+//   checkpoint:                 # optional: DIR/checkpoint.bin every N steps and/or M minutes
+//     every_steps: 5000         #   of wall time (integer >= 1); at least one of the two keys.
+//     every_minutes: 30         #   > 0. A stop (SIGINT, SIGTERM, --max-steps) always writes one;
+//                               #   resume with ecm-mpm SCENE.yaml --restart DIR
 //   conditions:                 # on the grid nodes inside a box
 //     - name: base
 //       box: {min: [0, 0], max: [100, 0]}

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "mpm/ordered_sum.hpp"
 #include "mpm/seeding.hpp"
 
 namespace ecm::mpm {
@@ -96,15 +97,42 @@ void Solver::advance() {
 
 Energies Solver::energies() const {
   const Particles& p = particles_;
-  double kinetic = 0.0, strain = 0.0;
-  const auto n = static_cast<long>(p.size());
-#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : kinetic, strain)
-  for (long i = 0; i < n; ++i) {
+  const Vec2 e = orderedSum(threads_, static_cast<long>(p.size()), Vec2(Vec2::Zero()), [&](long i) {
     const auto k = static_cast<std::size_t>(i);
-    kinetic += 0.5 * p.mass[k] * p.velocity[k].squaredNorm();
-    strain += 0.5 * p.volume[k] * p.stress[k].dot(p.strain[k]);
+    return Vec2(0.5 * p.mass[k] * p.velocity[k].squaredNorm(), 0.5 * p.volume[k] * p.stress[k].dot(p.strain[k]));
+  });
+  return {e[0], e[1], externalWork_, dissipated_, damping_};  // kinetic, strain
+}
+
+Solver::StepState Solver::stepState() const {
+  StepState s{time_, dt_, step_, externalWork_, dissipated_, damping_, substepped_, released_, {}, {}, {}};
+  for (const auto& c : conditions_) {
+    s.reactions.push_back(c.reaction);
+    s.conditionDisplacements.push_back(c.displacement);
   }
-  return {kinetic, strain, externalWork_, dissipated_, damping_};
+  for (const auto& l : loads_) s.appliedLoads.push_back(l.applied);
+  return s;
+}
+
+void Solver::restoreStepState(const StepState& s) {
+  if (s.reactions.size() != conditions_.size() || s.conditionDisplacements.size() != conditions_.size() ||
+      s.appliedLoads.size() != loads_.size())
+    throw std::invalid_argument("the state has " + std::to_string(s.reactions.size()) + " conditions and " +
+                                std::to_string(s.appliedLoads.size()) + " loads, the scene " +
+                                std::to_string(conditions_.size()) + " and " + std::to_string(loads_.size()));
+  time_ = s.time;
+  dt_ = s.timeStep;
+  step_ = s.step;
+  externalWork_ = s.externalWork;
+  dissipated_ = s.dissipated;
+  damping_ = s.damping;
+  substepped_ = s.substepped;
+  released_ = s.released;
+  for (std::size_t i = 0; i < conditions_.size(); ++i) {
+    conditions_[i].reaction = s.reactions[i];
+    conditions_[i].displacement = s.conditionDisplacements[i];
+  }
+  for (std::size_t i = 0; i < loads_.size(); ++i) loads_[i].applied = s.appliedLoads[i];
 }
 
 double Solver::damage(std::size_t i) const {

@@ -87,6 +87,20 @@ class Solver {
   long substepped() const { return substepped_; }  // material updates that needed sub-stepping so far
   long snapBackReleases() const { return released_; }  // enriched updates that released a snap-back so far
 
+  // What carries over from one step to the next besides the particles (for checkpoints,
+  // mpm/checkpoint.hpp). The grid and the particles' stencils are rebuilt by every step.
+  struct StepState {
+    double time = 0.0, timeStep = 0.0;
+    long step = 0;
+    double externalWork = 0.0, dissipated = 0.0, damping = 0.0;
+    long substepped = 0, released = 0;
+    std::vector<Vec2> reactions, conditionDisplacements;  // per condition
+    std::vector<Vec2> appliedLoads;                       // per load
+  };
+  StepState stepState() const;
+  // Throws std::invalid_argument when the condition or load counts differ from the scene's.
+  void restoreStepState(const StepState& s);
+
  private:
   Scene scene_;
   int threads_;

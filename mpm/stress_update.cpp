@@ -65,17 +65,20 @@ void Solver::updateStresses() {
   Particles& p = particles_;
   const std::size_t count = p.size();
   const int levels = scene_.solver.substepLevels;
-  double dissipated = 0.0;
+  // Dissipation summed per chunk of the dynamic schedule (each chunk is one thread's, in order),
+  // then over the chunks in order: the same bits for any thread count and schedule.
+  constexpr std::size_t kChunk = 512;
+  std::vector<double> chunkDissipation(count / kChunk + 1, 0.0);
   long retries = 0, released = 0;
   const SnapBackPolicy policy = scene_.solver.snapBack;
   Failure failure;
   std::vector<std::vector<Onset>> onsets(static_cast<std::size_t>(threads_));
-#pragma omp parallel num_threads(threads_) reduction(+ : dissipated, retries, released)
+#pragma omp parallel num_threads(threads_) reduction(+ : retries, released)
   {
     std::vector<Onset>& mine = onsets[static_cast<std::size_t>(omp_get_thread_num())];
     // Dynamic: cracked points cost ~100 intact ones and cluster in space. Each point's update
     // is independent of the others, so the schedule does not change any result.
-#pragma omp for schedule(dynamic, 512) nowait
+#pragma omp for schedule(dynamic, kChunk) nowait
     for (std::size_t i = 0; i < count; ++i) {
       const MaterialKernel& k = kernels_[p.material[i]];
       const Voigt& d = p.strainIncrement[i];
@@ -92,7 +95,7 @@ void Solver::updateStresses() {
           p.strain[i] = s.strain;
           p.integrity[i] = s.integrity;
           p.stress[i] = r.stress;
-          dissipated += r.dissipation * p.volume[i];
+          chunkDissipation[i / kChunk] += r.dissipation * p.volume[i];
           break;
         }
         case ModelKind::Enriched: {
@@ -107,7 +110,7 @@ void Solver::updateStresses() {
           }
           if (r.converged()) {
             p.stress[i] = r.stress;
-            dissipated += r.dissipation * p.volume[i];
+            chunkDissipation[i / kChunk] += r.dissipation * p.volume[i];
             released += r.released ? 1 : 0;
             if (onset) mine.push_back({i, *onset});
           }
@@ -132,6 +135,8 @@ void Solver::updateStresses() {
     p.band[o.particle] = static_cast<std::int32_t>(p.bands.size());
     p.bands.push_back(o.band);
   }
+  double dissipated = 0.0;
+  for (const double d : chunkDissipation) dissipated += d;
   dissipated_ += dissipated;
   substepped_ += retries;
   released_ += released;

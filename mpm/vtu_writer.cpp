@@ -85,12 +85,20 @@ void writeVtu(const Solver& solver, const std::filesystem::path& path) {
 
 VtuSeries::VtuSeries(std::filesystem::path dir, std::string stem) : dir_(std::move(dir)), stem_(std::move(stem)) {}
 
-void VtuSeries::add(const Solver& solver) {
+std::string VtuSeries::fileName(std::size_t index) const {
   char name[64];
-  std::snprintf(name, sizeof name, "_%05zu.vtu", entries_.size());
-  const std::string file = stem_ + name;
+  std::snprintf(name, sizeof name, "_%05zu.vtu", index);
+  return stem_ + name;
+}
+
+void VtuSeries::add(const Solver& solver) {
+  const std::string file = fileName(entries_.size());
   writeVtu(solver, dir_ / file);
   entries_.emplace_back(solver.time(), file);
+  writeIndex();
+}
+
+void VtuSeries::writeIndex() const {
   std::string index = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
   for (const auto& [t, f] : entries_) {
     index += "    <DataSet timestep=\"";
@@ -99,6 +107,21 @@ void VtuSeries::add(const Solver& solver) {
   }
   index += "  </Collection>\n</VTKFile>\n";
   io::writeFileAtomically(indexPath(), index);
+}
+
+std::vector<double> VtuSeries::times() const {
+  std::vector<double> t;
+  for (const auto& e : entries_) t.push_back(e.first);
+  return t;
+}
+
+void VtuSeries::resume(const std::vector<double>& times) {
+  entries_.clear();
+  for (const double t : times) entries_.emplace_back(t, fileName(entries_.size()));
+  std::error_code ec;
+  for (std::size_t i = entries_.size(); std::filesystem::remove(dir_ / fileName(i), ec); ++i) {
+  }
+  writeIndex();
 }
 
 }  // namespace ecm::mpm

@@ -21,8 +21,14 @@ class VtuSeries {
   void add(const Solver& solver);
   std::size_t size() const { return entries_.size(); }
   std::filesystem::path indexPath() const { return dir_ / (stem_ + ".pvd"); }
+  std::vector<double> times() const;  // of the snapshots so far (s)
+  // Continues the series of an earlier run whose snapshots at `times` are on disk (a restart):
+  // the snapshots it wrote after them are removed and the index is rewritten.
+  void resume(const std::vector<double>& times);
 
  private:
+  std::string fileName(std::size_t index) const;
+  void writeIndex() const;
   std::filesystem::path dir_;
   std::string stem_;
   std::vector<std::pair<double, std::string>> entries_;  // time (s), file name

@@ -67,6 +67,88 @@ TEST(CsvWriter, FullDiskIsDetectedAtFlush) {
   }
 }
 
+TEST(CsvWriter, RowsOfAFullDiskAreReportedAtTheLatestAtClose) {
+  if (!std::filesystem::exists("/dev/full")) GTEST_SKIP() << "no /dev/full";
+  CsvWriter w("/dev/full", {"a", "b"});
+  try {
+    for (int i = 0; i < 100000; ++i) w.row({1.0 * i, 2.0});  // more than the buffer holds
+    w.close();
+    FAIL() << "writing to /dev/full did not fail";
+  } catch (const OutputError& e) {
+    expectContains(e.what(), "cannot write '/dev/full'");
+  }
+}
+
+// A write that fails (here: beyond the file size limit, as on a full disk) leaves the file as
+// the last successful flush() wrote it: whole rows only.
+TEST(CsvWriter, FailedWriteCutsTheFileBackToTheLastFlush) {
+  const TempDir dir;
+  const auto path = dir.path() / "t.csv";
+  std::string flushed;
+  {
+    const test::FileSizeLimit limit(100);
+    CsvWriter w(path, {"w", "sigma"});
+    try {
+      for (int i = 0; i < 100; ++i) {
+        w.row({0.1 * i, 1.0 / 3.0});
+        w.flush();
+        flushed = readFile(path);
+      }
+      FAIL() << "the size limit did not stop the writer";
+    } catch (const OutputError& e) {
+      expectContains(e.what(), path.string());
+    }
+    EXPECT_THROW(w.row({1.0, 2.0}), OutputError);  // and it stays failed
+  }
+  EXPECT_GT(flushed.size(), 30u);
+  EXPECT_EQ(readFile(path), flushed);
+  EXPECT_EQ(flushed.back(), '\n');
+}
+
+// Resume: a writer continues a file where an earlier one stood (its bytes and digest after a
+// flush); rows written after that point are cut off, and the result is what one writer writing
+// the kept rows and then the new ones would have written.
+TEST(CsvWriter, ResumeContinuesWhereTheRecordedWriterStood) {
+  const TempDir dir;
+  const auto path = dir.path() / "h.csv", reference = dir.path() / "r.csv";
+  CsvWriter::Resume at;
+  {
+    CsvWriter w(path, {"t", "x"});
+    w.row({0.0, 1.0});
+    w.row({1.0, 2.0});
+    w.flush();
+    at = {w.bytes(), w.digest(), w.rows()};
+    w.row({2.0, 3.0});  // after the recorded point: cut off by the resume
+  }
+  {
+    CsvWriter w(path, {"t", "x"}, at);
+    EXPECT_EQ(w.rows(), 2u);
+    w.row({2.0, 30.0});
+  }
+  std::uint64_t digest = 0;
+  {
+    CsvWriter r(reference, {"t", "x"});
+    r.row({0.0, 1.0});
+    r.row({1.0, 2.0});
+    r.row({2.0, 30.0});
+    r.flush();
+    digest = r.digest();
+  }
+  EXPECT_EQ(readFile(path), "t,x\n0,1\n1,2\n2,30\n");
+  EXPECT_EQ(readFile(path), readFile(reference));
+  {
+    CsvWriter::Resume end{std::filesystem::file_size(path), digest, 3};
+    EXPECT_NO_THROW(CsvWriter(path, {"t", "x"}, end));
+  }
+  // A changed prefix, a shorter file or another header are refused, and the file is left alone.
+  const std::string before = readFile(path);
+  EXPECT_THROW(CsvWriter(path, {"t", "x"}, CsvWriter::Resume{at.bytes, at.digest ^ 1, 2}), std::runtime_error);
+  EXPECT_THROW(CsvWriter(path, {"t", "x"}, CsvWriter::Resume{1000, at.digest, 2}), std::runtime_error);
+  EXPECT_THROW(CsvWriter(path, {"t", "y"}, at), std::runtime_error);
+  EXPECT_THROW(CsvWriter(dir.path() / "none.csv", {"t", "x"}, at), std::runtime_error);
+  EXPECT_EQ(readFile(path), before);
+}
+
 TEST(CsvReader, SkipsCommentsAndReadsWithoutHeader) {
   const TempDir dir;
   const auto path = dir.write("m.csv", "# measured\n\n0, 3.0\n0.01,2.5\n+0.02 , 1e0\n");

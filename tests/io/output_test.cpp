@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "io/atomic_file.hpp"
 #include "io/gnuplot.hpp"
 #include "io/json_summary.hpp"
 #include "io/output_dir.hpp"
@@ -61,6 +62,29 @@ TEST(JsonSummary, UnwritablePathThrowsNamingIt) {
   } catch (const OutputError& e) {
     expectContains(e.what(), path.string());
   }
+}
+
+TEST(AtomicFile, DurableWriteReplacesAndAFailedOneKeepsTheOldFile) {
+  const TempDir dir;
+  const auto path = dir.path() / "state.bin";
+  writeFileAtomically(path, "first", Durability::Sync);
+  writeFileAtomically(path, "second", Durability::Sync);
+  EXPECT_EQ(readFile(path), "second");
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "state.bin.tmp"));
+  {
+    const test::FileSizeLimit limit(3);  // the new content does not fit: like a full disk
+    EXPECT_THROW(writeFileAtomically(path, "third, longer", Durability::Sync), OutputError);
+  }
+  EXPECT_EQ(readFile(path), "second");
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "state.bin.tmp"));
+  std::filesystem::create_directory(dir.path() / "state.bin.tmp");  // the temporary cannot be created
+  try {
+    writeFileAtomically(path, "fourth", Durability::Sync);
+    FAIL();
+  } catch (const OutputError& e) {
+    expectContains(e.what(), path.string());
+  }
+  EXPECT_EQ(readFile(path), "second");
 }
 
 PlotSpec sampleSpec() {

@@ -47,6 +47,27 @@ TEST(Run, WritesHistorySummarySnapshots) {
   EXPECT_NE(vtu.find("NumberOfPoints=\"" + std::to_string(r.particles) + "\""), std::string::npos);
 }
 
+TEST(Run, ParticleSnapshotsAtTheRequestedTimes) {
+  // One CSV per requested time, written at the first step at or past it, with one row per
+  // particle; the file of the last time equals particles_final.csv when that time ends the run.
+  TempDir tmp;
+  Scene s = tensionBlock();
+  s.endTime = 1e-4;
+  s.particleSnapshots = {3e-5, 1e-4};
+  RunOptions o;
+  o.outputDir = tmp.path() / "out";
+  o.plot = false;
+  o.progress = false;
+  o.snapshots = false;
+  const RunResult r = runScene(s, o);
+  ASSERT_TRUE(r.completed) << r.error;
+  const io::CsvTable a = io::readCsv(o.outputDir / "particles_t3e-05.csv");
+  EXPECT_EQ(a.header, (std::vector<std::string>{"x_mm", "y_mm", "damage", "material", "opening_mm"}));
+  EXPECT_EQ(a.rows.size(), r.particles);
+  EXPECT_EQ(readFile(o.outputDir / "particles_t0.0001.csv"), readFile(o.outputDir / "particles_final.csv"));
+  EXPECT_NE(readFile(o.outputDir / "particles_t3e-05.csv"), readFile(o.outputDir / "particles_final.csv"));
+}
+
 TEST(Run, FailureKeepsOutputsReadableAndExplainsInSummary) {
   TempDir tmp;
   Scene s;

@@ -69,6 +69,13 @@ TEST(SceneYaml, ErrorsNameFileAndLine) {
     expectContains(err(t).what(), "end_time");
   }
   {
+    const auto e = err(kScene + "particle_snapshots: [5e-4, 2e-4]\n");
+    EXPECT_EQ(e.line, 10);
+    expectContains(e.what(), "times must increase");
+    expectContains(err(kScene + "particle_snapshots: [2e-3]\n").what(), "after end_time");
+    expectContains(err(kScene + "particle_snapshots: [-1e-4]\n").what(), "particle_snapshots");
+  }
+  {
     const auto e = err(kScene + "solver: {cfl: 1.5}\n");
     EXPECT_EQ(e.line, 10);
     expectContains(e.what(), "cfl");
@@ -98,6 +105,37 @@ TEST(SceneYaml, ErrorsNameFileAndLine) {
   {
     const auto e = err(kScene + "bodies2: []\n");
     expectContains(e.what(), "bodies2");
+  }
+}
+
+TEST(SceneYaml, CheckpointKeysAreReadAndChecked) {
+  const Scene none = readScene(io::parseYaml(kScene, "scene.yaml"));
+  EXPECT_EQ(none.checkpoint.everySteps, 0);
+  EXPECT_EQ(none.checkpoint.everyMinutes, 0.0);
+  const Scene both = readScene(io::parseYaml(kScene + "checkpoint: {every_steps: 5000, every_minutes: 2.5}\n", "scene.yaml"));
+  EXPECT_EQ(both.checkpoint.everySteps, 5000);
+  EXPECT_EQ(both.checkpoint.everyMinutes, 2.5);
+  const Scene steps = readScene(io::parseYaml(kScene + "checkpoint:\n  every_steps: 10\n", "scene.yaml"));
+  EXPECT_EQ(steps.checkpoint.everySteps, 10);
+  EXPECT_EQ(steps.checkpoint.everyMinutes, 0.0);
+
+  auto err = [](const std::string& tail) {
+    return inputError([&] { readScene(io::parseYaml(kScene + tail, "scene.yaml")); });
+  };
+  for (const auto& [tail, reason] : std::vector<std::pair<std::string, std::string>>{
+           {"checkpoint: {every_steps: 0}\n", "every_steps"},          // out of range: >= 1
+           {"checkpoint: {every_steps: 2.5}\n", "every_steps"},        // not an integer
+           {"checkpoint: {every_steps: often}\n", "every_steps"},      // not a number
+           {"checkpoint: {every_minutes: 0}\n", "every_minutes"},      // > 0
+           {"checkpoint: {every_minutes: -1}\n", "every_minutes"},
+           {"checkpoint: {every_hours: 1}\n", "unknown key 'every_hours'"},
+           {"checkpoint: {every_steps: 10, at_exit: true}\n", "unknown key 'at_exit'"},
+           {"checkpoint: {}\n", "every_steps: N and/or every_minutes: M"},
+           {"checkpoint: 100\n", "checkpoint"}}) {
+    const io::InputError e = err(tail);
+    EXPECT_EQ(e.line, 10) << tail;
+    expectContains(e.what(), "scene.yaml:10:");
+    expectContains(e.what(), reason);
   }
 }
 
