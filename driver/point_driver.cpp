@@ -22,6 +22,7 @@ class Runner {
       : scene_(s), observe_(o), material_(s.material), size_(EffectiveSize::fixed(s.effectiveSize)) {
     const double ft = s.material.tensileStrength > 0.0 ? s.material.tensileStrength : 1.0;
     settings_.tolerance = s.relativeTolerance * ft;
+    settings_.maxSubstepLevels = s.substepLevels;
     total_ = totalIncrements(s);
   }
 

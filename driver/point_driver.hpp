@@ -23,6 +23,7 @@ struct PointScene {
   std::vector<Segment> path;
   OnSnapBack onSnapBack = OnSnapBack::Jump;
   double relativeTolerance = 1e-8;  // stress control residual <= this * f_t' (or * 1 MPa if elastic)
+  int substepLevels = 10;           // a failing increment is retried in 2, 4, ... 2^levels pieces (0: never)
 };
 
 struct HistoryRow {

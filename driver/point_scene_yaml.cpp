@@ -79,6 +79,7 @@ PointScene readPointScene(const YamlMap& map) {
                                    std::to_string(s.material.bandWidth) + " mm (f = h/H < 1, Eq. (1))");
   s.onSnapBack = map.getEnumOr("on_snapback", {"jump", "stop"}, "jump") == "jump" ? OnSnapBack::Jump : OnSnapBack::Stop;
   s.relativeTolerance = map.getOr<double>("tolerance", 1e-8, Range{0.0, 1e-3, false, true});
+  s.substepLevels = map.getOr<int>("substep_levels", 10, Range::closed(0.0, 20.0));
   const YamlMap path = map.child("path");
   s.path = readPath(path, s.material.elastic.poissonRatio);
   for (const Segment& seg : s.path)

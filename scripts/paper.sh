@@ -26,9 +26,10 @@ parts+=("snapback-study")
 
 if [[ -x build/mpm/ecm-mpm && -f data/den/den-4b-coarse.yaml ]]; then
   echo "== 3. DEN mixed-mode fracture, coarse mesh (ecm-mpm)"
-  # A failed run still writes its summary.json (status and error); the main job reports it.
-  ./build/mpm/ecm-mpm data/den/den-4b-coarse.yaml --out "$out/den-coarse" --no-vtu ||
-    echo "   DEN coarse run stopped early: see $out/den-coarse/summary.json"
+  # scripts/den.sh: the run (ecm-mpm's folder den-coarse/coarse), the load-displacement plot,
+  # the damage and crack maps, the table; a failed run is kept in the table with its status.
+  scripts/den.sh "$out/den-coarse" coarse ||
+    echo "   DEN coarse run stopped early: see $out/den-coarse/coarse/summary.json"
   parts+=("den-coarse")
 fi
 

@@ -1,0 +1,207 @@
+#pragma once
+// ecm-study: speed versus accuracy. A study file names a base scene (an ecm-mpm scene, or an
+// ecm-point scene for `kind: point`) and knobs, each a key path of the scene with the values to
+// try. Every run is the base scene's YAML with the knob values written in, read back by the
+// scene reader (so a knob value is checked exactly like a scene value), and run through the
+// ordinary run function into its own folder. Each run's wall time, memory and error against a
+// reference (a closed form, or one run of the study taken as the finest setting) go into a
+// table, summary.json and a Pareto plot (error against wall time) that marks the settings no
+// other run beats on both. Units: mm, N, MPa, tonne, s. Format:
+//
+//   name: elastic-bar-study
+//   kind: mpm                      # mpm (default) | point
+//   scene: ../mpm/elastic-bar.yaml # base scene, relative to this file
+//   set:                           # optional: written into the base scene for every run
+//     end_time: 1.2e-4
+//     conditions[0].box: {min: [-10, -10], max: [0, 20]}
+//   design: grid                   # grid: every combination | one_at_a_time: the base run plus
+//                                  # one knob changed at a time (the others at the base value)
+//   knobs:                         # key path -> values (applied in this order)
+//     solver.cfl: [0.1, 0.3, 0.6]
+//     particles_per_cell: [1, 2, 3]
+//     grid.refinement: [1, 2, 4]   # derived: cells x r (rounded up), cell_size / r
+//     time_scale: [0.5, 1, 2]      # derived: every time of the loading x s (see applyTimeScale)
+//   reference:                     # exactly one of closed_form and run
+//     closed_form: bar_vibration   # mpm: fixed-free bar released with a uniform velocity
+//     condition: clamp             #   (its reaction is analysed: period and amplitude)
+//     # closed_form: uniaxial_tension   point: the enriched point's closed form
+//     # run: {particles_per_cell: 3, solver.cfl: 0.1}   the finest setting (added if not planned)
+//     # condition: top             with run: peak_reaction is this condition's largest |R| in history.csv
+//     metrics: [period, amplitude] # optional subset; the run's error is the largest |metric|
+//   repeat: 1                      # runs per setting; the shortest wall time is kept
+//
+// Metrics (signed relative errors): bar_vibration: period, amplitude; uniaxial_tension and point
+// runs: stress_path (max deviation / f_t'), dissipation, peak_stress; mpm runs: peak_load
+// (summary.json), peak_reaction (needs condition), dissipated_energy.
+//
+// Key paths: map keys joined by dots, sequence entries by [i] (conditions[0].box.min). Plain
+// keys are written first, in the order given, then the derived knobs.
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "driver/point_driver.hpp"
+#include "io/csv_reader.hpp"
+#include "io/yaml_input.hpp"
+#include "mpm/scene.hpp"
+
+namespace ecm::mpm {
+
+enum class StudyKind { Mpm, Point };
+enum class StudyDesign { Grid, OneAtATime };
+enum class ReferenceKind { BarVibration, UniaxialTension, Run };
+
+// One knob: a scene key path (or a derived knob) and the values to try, as written.
+struct Knob {
+  std::string key;
+  std::vector<YAML::Node> values;
+  int line = 1;  // of the key in the study file
+};
+
+struct Setting {  // a key path and its value, with the study file line it came from
+  std::string key;
+  YAML::Node value;
+  int line = 1;
+};
+
+struct Study {
+  std::string name;
+  std::string file;  // the study file, for messages
+  StudyKind kind = StudyKind::Mpm;
+  std::filesystem::path scene;  // base scene
+  std::vector<Setting> set;     // written into the base scene for every run
+  StudyDesign design = StudyDesign::Grid;
+  std::vector<Knob> knobs;
+  ReferenceKind reference = ReferenceKind::Run;
+  int referenceLine = 1;
+  std::string condition;                   // BarVibration: the clamp
+  std::vector<Setting> referenceSettings;  // Run: knob values of the reference run
+  std::vector<std::string> metrics;        // the errors that make up a run's error
+  int repeat = 1;
+};
+
+// The metrics a reference offers, for a study kind.
+std::vector<std::string> availableMetrics(StudyKind kind, ReferenceKind reference);
+
+Study readStudy(const io::YamlMap& map);
+Study loadStudyFile(const std::filesystem::path& path);
+
+// One run of the plan: its knob values and its validated scene.
+struct PlannedRun {
+  int id = 0;                       // 1-based, in plan order
+  std::string label;                // the knobs away from the base ("base" for none)
+  std::vector<std::string> values;  // per knob: the value as text (the base value if not set)
+  bool reference = false;
+  std::string sceneText;            // the edited scene (YAML), kept in the run folder
+  std::optional<Scene> scene;       // kind mpm
+  std::optional<PointScene> point;  // kind point
+  std::size_t particles = 0;        // mpm: seeded particles
+  double estimatedSteps = 0.0;      // mpm: end time / time step; point: increments
+};
+
+// Every run of the study, each scene read and checked (and, for mpm, seeded): an invalid knob
+// value is an InputError "STUDY:LINE: run N (knob=value): SCENE:LINE: reason" before anything
+// runs. Runs with identical values are planned once.
+std::vector<PlannedRun> planStudy(const Study& study);
+
+// The edits of the study, exposed for tests. Both throw std::invalid_argument.
+void setKeyPath(YAML::Node& root, const std::string& path, const YAML::Node& value);
+std::optional<YAML::Node> findKeyPath(const YAML::Node& root, const std::string& path);
+void applyGridRefinement(YAML::Node& scene, double factor);
+// Loading time x s: end_time, output_interval, every history time of conditions and loads;
+// velocity histories (velocity, velocity_field scale) divided by s, so that prescribed
+// displacements, forces and their paths stay the same. Initial velocities and gravity stay.
+void applyTimeScale(YAML::Node& scene, double s);
+
+struct StudyOptions {
+  std::filesystem::path outputDir;
+  int threads = 2;         // mpm runs
+  bool isolate = true;     // mpm runs in a child process (its own peak RSS; a crash stays there)
+  bool progress = true;    // a line per run on stderr
+  bool resume = false;     // mpm: reuse a run folder whose scene.yaml is this run's (an interrupted study goes on)
+  std::ostream* table = nullptr;  // the final table (stdout in ecm-study)
+};
+
+struct RunRecord {
+  int id = 0;
+  std::string label;
+  std::vector<std::string> values;
+  bool reference = false;
+  std::string directory;            // relative to the study folder
+  std::string status = "not run";   // completed | failed
+  std::string message;              // why a run failed
+  double wallTime = NAN;            // s, the shortest of the repeats
+  double steps = NAN;               // mpm: time steps; point: increments
+  double particles = NAN;
+  double updatesPerSecond = NAN;    // particle-updates (point: increments) per second
+  double bytesPerParticle = NAN;    // mpm: the solver's particle arrays, cracked points' bands included
+  double peakRssMb = NAN;           // mpm isolated: peak resident memory of the run's process
+  double cpuTime = NAN;             // mpm isolated: user + system time of the run's process (s)
+  double substepped = NAN;          // material updates (point: increments) that were sub-stepped
+  std::vector<double> metrics;      // signed relative errors (stress path: / f_t'), per study.metrics
+  double error = NAN;               // max |metrics|
+  bool pareto = false;
+  bool reused = false;              // --resume: the outputs of an earlier study were read
+};
+
+struct StudyResult {
+  std::vector<RunRecord> runs;
+  nlohmann::json reference;  // the closed-form values or the reference run's values
+  bool allCompleted = true;
+  double studyRssMb = NAN;   // the study's own resident memory (isolated runs start from it)
+};
+
+// Runs the plan (the reference run first), writes DIR/study.csv, DIR/summary.json,
+// DIR/pareto.png and DIR/runs/NNN-label/, and prints the table to options.table.
+StudyResult runStudy(const Study& study, const std::vector<PlannedRun>& plan, const StudyOptions& options);
+
+// Non-dominated points of (cost, error): no other point has cost <= and error <= with one of
+// them strictly smaller. Points with a non-finite cost or error are never on the front.
+std::vector<bool> paretoFront(const std::vector<double>& cost, const std::vector<double>& error);
+
+// --- closed forms and measures (exposed for tests) ---
+
+// Fixed-free bar released with v0: the clamp reaction is a square wave of period 4 L / c and
+// amplitude rho c v0 A (d'Alembert; e.g. Graff, Wave Motion in Elastic Solids, sec. 1.2). Read
+// from the scene's first rectangle body (along x) and its material (nu = 0); throws
+// std::invalid_argument if the scene is not such a bar.
+struct BarVibration {
+  double period = 0.0;     // s
+  double amplitude = 0.0;  // N
+};
+BarVibration barVibrationClosedForm(const Scene& scene);
+
+// Period and amplitude of a square-wave-like reaction history: sign changes found with a
+// Schmitt trigger at +-amplitude/2 (ringing near zero is not counted), period = twice the mean
+// spacing of the zero crossings (the first crossing is at T/2 when only one is found), amplitude
+// = mean |R| over the middle half of every half period.
+struct SquareWave {
+  double period = NAN;
+  double amplitude = NAN;
+  int crossings = 0;
+};
+SquareWave measureSquareWave(const std::vector<double>& time, const std::vector<double>& reaction, double amplitude);
+
+// The enriched point in uniaxial tension (plane stress), material/uniaxial_closed_form.hpp, up
+// to the macro strain `strainEnd`: the curve (elastic branch, then the band branch), its peak
+// and the dissipation per volume. Throws std::invalid_argument when the macro curve turns back
+// (H beyond the snap-back size).
+struct UniaxialReference {
+  std::vector<double> strain, stress;
+  double peakStress = 0.0;
+  double dissipation = 0.0;  // per unit volume of the point (MPa), f int F dD
+};
+UniaxialReference uniaxialTensionClosedForm(const MaterialParams& material, double effectiveSize, double strainEnd);
+
+// max |y(x_i) - curve(x_i)| over the sample points x_i inside the curve's range, the curve
+// interpolated linearly (x increasing).
+double maxDeviation(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& curveX,
+                    const std::vector<double>& curveY);
+
+}  // namespace ecm::mpm

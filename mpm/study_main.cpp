@@ -1,0 +1,61 @@
+// ecm-study: speed versus accuracy over a grid of scene settings (format in mpm/study.hpp).
+//   ecm-study STUDY.yaml [-o|--out DIR] [--threads N] [--list] [--resume] [--in-process] [-q]
+// Exit status: 0 every run completed, 1 some run failed (see study.csv), 2 bad input or output folder.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "io/output_error.hpp"
+#include "mpm/study.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"ecm-study: wall time, memory and error of a scene over a grid of settings (units: mm, N, MPa, t, s)"};
+  std::string studyPath, outDir;
+  ecm::mpm::StudyOptions options;
+  bool list = false, inProcess = false, quiet = false, resume = false;
+  app.add_option("study", studyPath, "study file (YAML)")->required()->check(CLI::ExistingFile);
+  app.add_option("-o,--out", outDir, "output folder (default: out/STUDY-NAME)");
+  app.add_option("-t,--threads", options.threads, "OpenMP threads of each MPM run (default 2)")->check(CLI::PositiveNumber);
+  app.add_flag("--list", list, "print the planned runs (checked like scenes) and stop");
+  app.add_flag("--resume", resume, "reuse the MPM runs of DIR whose scene is unchanged (an interrupted study goes on)");
+  app.add_flag("--in-process", inProcess, "run MPM scenes in this process (no per-run peak memory)");
+  app.add_flag("-q,--quiet", quiet, "no line per run on stderr");
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    const ecm::mpm::Study study = ecm::mpm::loadStudyFile(studyPath);
+    const std::vector<ecm::mpm::PlannedRun> plan = ecm::mpm::planStudy(study);
+    if (list) {
+      const bool mpm = study.kind == ecm::mpm::StudyKind::Mpm;
+      double total = 0.0;
+      for (const auto& r : plan) {
+        const double work = static_cast<double>(r.particles) * r.estimatedSteps;
+        total += work;
+        if (mpm)
+          std::printf("%3d%s  %-60s  %8zu particles  %9.0f steps  %.3g particle-updates\n", r.id, r.reference ? "R" : " ",
+                      r.label.c_str(), r.particles, r.estimatedSteps, work);
+        else
+          std::printf("%3d%s  %-60s  %9.0f increments\n", r.id, r.reference ? "R" : " ", r.label.c_str(), work);
+      }
+      std::printf("%zu runs, %.3g %s in all\n", plan.size(), total, mpm ? "particle-updates (estimated)" : "increments");
+      return 0;
+    }
+    options.outputDir = outDir.empty() ? std::filesystem::path("out") / study.name : std::filesystem::path(outDir);
+    options.isolate = !inProcess;
+    options.resume = resume;
+    options.progress = !quiet;
+    options.table = &std::cout;
+    const ecm::mpm::StudyResult r = ecm::mpm::runStudy(study, plan, options);
+    std::fprintf(stderr, "%zu runs -> %s (study.csv, summary.json, pareto.png)\n", r.runs.size(),
+                 options.outputDir.string().c_str());
+    return r.allCompleted ? 0 : 1;
+  } catch (const ecm::io::InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+  } catch (const ecm::io::OutputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s: %s\n", studyPath.c_str(), e.what());
+  }
+  return 2;
+}
