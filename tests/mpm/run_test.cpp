@@ -2,6 +2,7 @@
 // a failed run still leaves readable outputs and a summary saying why.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -45,6 +46,23 @@ TEST(Run, WritesHistorySummarySnapshots) {
   for (const char* field : {"displacement", "stress", "damage", "crack_normal", "opening", "material", "cracked"})
     EXPECT_NE(vtu.find(std::string("Name=\"") + field + "\""), std::string::npos) << field;
   EXPECT_NE(vtu.find("NumberOfPoints=\"" + std::to_string(r.particles) + "\""), std::string::npos);
+  // Raw appended arrays (VTK XML): after '_', per array a UInt64 byte count then the values. The
+  // positions of the last snapshot are those of particles_final.csv (same step).
+  const std::size_t tag = vtu.find("Name=\"position\" NumberOfComponents=\"3\" format=\"appended\" offset=\"");
+  ASSERT_NE(tag, std::string::npos);
+  const std::size_t offset = std::stoul(vtu.substr(vtu.find("offset=\"", tag) + 8));
+  const std::size_t start = vtu.find('_', vtu.find("<AppendedData encoding=\"raw\">")) + 1;
+  std::uint64_t bytes = 0;
+  std::memcpy(&bytes, vtu.data() + start + offset, sizeof bytes);
+  EXPECT_EQ(bytes, 3 * 8 * r.particles);
+  const io::CsvTable final = io::readCsv(o.outputDir / "particles_final.csv");
+  for (std::size_t i : {std::size_t{0}, r.particles - 1}) {
+    double xy[2];
+    std::memcpy(xy, vtu.data() + start + offset + 8 + 24 * i, sizeof xy);
+    EXPECT_EQ(xy[0], final.rows[i][0]) << i;
+    EXPECT_EQ(xy[1], final.rows[i][1]) << i;
+  }
+  EXPECT_EQ(vtu.substr(vtu.size() - 30), "\n  </AppendedData>\n</VTKFile>\n");
 }
 
 TEST(Run, ParticleSnapshotsAtTheRequestedTimes) {
