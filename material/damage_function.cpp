@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "material/parameter_check.hpp"
@@ -119,7 +120,8 @@ double dissipationBetween(const DamageLawParams& p, double xOld, double xNew) {
   double total = 0.0, hi = tb;
   // Below 1e-12 tb the integrand is flat at its t = 0 value: one last panel covers the rest.
   constexpr double ratio = 1.2;
-  while (hi > ratio * ta && hi > 1e-12 * tb) {
+  // (Among subnormal numbers hi / 1.2 can round back to hi: stop at the smallest normal double.)
+  while (hi > ratio * ta && hi > 1e-12 * tb && hi > std::numeric_limits<double>::min()) {
     total += panel(hi / ratio, hi);
     hi /= ratio;
   }

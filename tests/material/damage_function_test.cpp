@@ -78,6 +78,18 @@ TEST(DamageFunction, IncrementalDissipationAddsUpToTheTotal) {
   }
 }
 
+TEST(DamageFunction, SubnormalIntegritiesEndTheQuadrature) {
+  // Fuzzer finding (fuzz/corpus/material_update/subnormal-integrity): from a subnormal x the
+  // panels were cut by 1.2 forever (4.9e-324 / 1.2 rounds back to 4.9e-324). Now they stop at
+  // the smallest normal double (the integral below it, ~x^(1-2n), is ~1e-240).
+  for (const double xOld : {1.4821969375237396e-323, 4.9406564584124654e-324, 1e-310}) {
+    const double w = dissipationBetween(kLaw, xOld, 0.0);
+    EXPECT_TRUE(std::isfinite(w)) << xOld;
+    EXPECT_GE(w, 0.0) << xOld;
+    EXPECT_LT(w, 1e-200) << xOld;  // int_0^x F dx ~ x^(1-2n) ~ 1e-240 here
+  }
+}
+
 TEST(DamageFunction, OneIncrementToFailureDissipatesTheWholeIntegral) {
   // A single huge increment (x: 1 -> 1e-15, then the rest) against GSL's adaptive quadrature.
   const double twoSteps = dissipationBetween(kLaw, 1.0, 1e-15) + dissipationBetween(kLaw, 1e-15, 0.0);
