@@ -71,6 +71,12 @@ BandEquilibrium EnrichedBand::equilibrium(const BandState& b, const BandDamageLa
   return eq;
 }
 
+Mat2 EnrichedBand::secantJacobian(const BandState& b, double x) const {
+  const JumpMap n = jumpToStrain(b.crackNormal);
+  const double f = b.volumeFraction;
+  return n.transpose() * ((f / (1.0 - f) + x) * stiffness()) * n / bandWidth_;  // Eq. (9), a_L = x a
+}
+
 Tangent EnrichedBand::consistentTangent(const BandState& b, const BandEquilibrium& eq) const {
   const JumpMap n = jumpToStrain(b.crackNormal);
   const double f = b.volumeFraction;
@@ -88,7 +94,6 @@ UpdateResult EnrichedBand::updateCracked(BandState& b, Voigt& strain, const Voig
 
 UpdateResult EnrichedBand::releaseSnapBack(BandState& b, Voigt& strain, const Voigt& increment) const {
   const Voigt eps = strain + increment;
-  const JumpMap n = jumpToStrain(b.crackNormal);
   const double f = b.volumeFraction;
   // With the damage frozen at x, Eq. (6) is linear in [u] (secant K of Eq. (9)): [u](x) in one
   // solve. The band is in equilibrium with consistent damage where g(x) = Y([u](x)) - F(x) = 0.
@@ -103,8 +108,7 @@ UpdateResult EnrichedBand::releaseSnapBack(BandState& b, Voigt& strain, const Vo
     p.band.integrity = x;
     const BandDamageLaw::LoadingSurface frozen{x, std::numeric_limits<double>::infinity()};
     const BandEquilibrium eq = equilibrium(p.band, frozen, eps, b.jump, false);
-    const Mat2 secant = n.transpose() * ((f / (1.0 - f) + x) * stiffness()) * n / bandWidth_;
-    p.band.jump = b.jump + secant.llt().solve(eq.residual);
+    p.band.jump = b.jump + secantJacobian(b, x).llt().solve(eq.residual);
     const BandEquilibrium moved = equilibrium(p.band, frozen, eps, p.band.jump, false);
     p.g = moved.band.drivingForce / damageFunction(law_.law(), x) - 1.0;
     return p;
@@ -168,10 +172,7 @@ UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voi
   // 1. Elastic predictor: with the band's damage frozen, Eq. (6) is linear in [u] and the secant
   //    K of Eq. (9) (a_L = x0 a, always positive definite) solves it in one step. If the band
   //    stays inside its loading surface, that is the answer (unloading or neutral loading).
-  const JumpMap n = jumpToStrain(b.crackNormal);
-  const double f = b.volumeFraction;
-  const Mat2 secant = n.transpose() * ((f / (1.0 - f) + b.integrity) * stiffness()) * n / bandWidth_;
-  const Eigen::LLT<Mat2> secantSolver(secant);
+  const Eigen::LLT<Mat2> secantSolver(secantJacobian(b, b.integrity));
   const BandDamageLaw::LoadingSurface frozen{b.integrity, std::numeric_limits<double>::infinity()};
   Vec2 jump = b.jump;
   BandEquilibrium eq = equilibrium(b, frozen, eps, jump, false);

@@ -112,6 +112,8 @@ class EnrichedBand {
   static constexpr double kNeutralLoading = 1e-8;
 
  private:
+  // K of Eq. (9) with the band's damage frozen at x (a_L = x a): always positive definite.
+  Mat2 secantJacobian(const BandState& b, double x) const;
   // The cracked update proper: elastic predictor, then damage corrector on the envelope.
   UpdateResult predictCorrect(BandState& b, Voigt& strain, const Voigt& increment) const;
   // Commit a converged equilibrium (tangent Eq. (10), dissipation) or report NotConverged.

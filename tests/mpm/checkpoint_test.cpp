@@ -32,21 +32,10 @@ namespace fs = std::filesystem;
 // sideways by a load on particles: it cracks within 200 steps, so the checkpoints carry band
 // states, condition and load states. 1560 particles, about 290 steps, 13 output rows.
 Scene crackingBlock() {
-  Scene s = tensionBlock(0.0, 20);
+  Scene s = notchedCrackingBlock();
   s.name = "cracking-block";
-  s.materials = {paperConcrete()};
-  s.bodies.push_back({Shape::polygon({Vec2(-1.0, 45.0), Vec2(20.0, 49.0), Vec2(20.0, 51.0), Vec2(-1.0, 55.0)}), 0, true,
-                      Vec2::Zero()});
-  s.grid = {Vec2(-10.0, -10.0), Vec2(5.0, 5.0), 24, 26};
-  s.conditions = {NodeCondition::fixed("base", {Vec2(-20.0, 0.0), Vec2(120.0, 0.0)})};
-  NodeCondition top;
-  top.name = "top";
-  top.box = {Vec2(-20.0, 100.0), Vec2(120.0, 100.0)};
-  top.component[1] = {Prescribed::Velocity, History::smoothRamp(150.0, 2e-5)};
-  s.conditions.push_back(top);
   s.loads = {{"push", {Vec2(-1.0, 60.0), Vec2(3.0, 100.0)}, LoadTarget::Particles, Vec2(200.0, 0.0),
               History::linearRamp(1.0, 5e-5)}};
-  s.solver.damping.local = 0.1;
   s.endTime = 1.2e-4;
   s.outputInterval = 1e-5;
   return s;

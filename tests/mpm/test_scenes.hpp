@@ -90,4 +90,23 @@ inline Scene tensionBlock(double force = 1000.0, int cells = 10) {
   return s;
 }
 
+// The tension block of 5 mm cells in the paper's concrete with a notch on the left, pulled at
+// the top by a velocity ramp (150 mm/s): it cracks within ~200 steps (threads, checkpoints).
+inline Scene notchedCrackingBlock() {
+  Scene s = tensionBlock(0.0, 20);
+  s.loads.clear();
+  s.materials = {paperConcrete()};
+  s.bodies.push_back({Shape::polygon({Vec2(-1.0, 45.0), Vec2(20.0, 49.0), Vec2(20.0, 51.0), Vec2(-1.0, 55.0)}), 0, true,
+                      Vec2::Zero()});
+  s.grid = {Vec2(-10.0, -10.0), Vec2(5.0, 5.0), 24, 26};
+  s.conditions = {NodeCondition::fixed("base", {Vec2(-20.0, 0.0), Vec2(120.0, 0.0)})};
+  NodeCondition top;
+  top.name = "top";
+  top.box = {Vec2(-20.0, 100.0), Vec2(120.0, 100.0)};
+  top.component[1] = {Prescribed::Velocity, History::smoothRamp(150.0, 2e-5)};
+  s.conditions.push_back(top);
+  s.solver.damping.local = 0.1;
+  return s;
+}
+
 }  // namespace ecm::mpm::test

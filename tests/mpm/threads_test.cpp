@@ -9,21 +9,8 @@ namespace ecm::mpm::test {
 namespace {
 
 Scene crackingBlock(ShapeFunction shape) {
-  // The tension block in the paper's concrete with a notch, pulled by displacement until it cracks.
-  Scene s = tensionBlock(0.0, 20);
-  s.loads.clear();
-  s.materials = {paperConcrete()};
-  s.bodies.push_back({Shape::polygon({Vec2(-1.0, 45.0), Vec2(20.0, 49.0), Vec2(20.0, 51.0), Vec2(-1.0, 55.0)}), 0, true,
-                      Vec2::Zero()});
-  s.grid = {Vec2(-10.0, -10.0), Vec2(5.0, 5.0), 24, 26};
-  s.conditions = {NodeCondition::fixed("base", {Vec2(-20.0, 0.0), Vec2(120.0, 0.0)})};
-  NodeCondition top;
-  top.name = "top";
-  top.box = {Vec2(-20.0, 100.0), Vec2(120.0, 100.0)};
-  top.component[1] = {Prescribed::Velocity, History::smoothRamp(150.0, 2e-5)};
-  s.conditions.push_back(top);
+  Scene s = notchedCrackingBlock();
   s.solver.shapeFunction = shape;
-  s.solver.damping.local = 0.1;
   return s;
 }
 
