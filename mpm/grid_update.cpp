@@ -121,7 +121,8 @@ void Solver::addLoads() {
         grid_.externalForce[static_cast<std::size_t>(member)] += each;
         continue;
       }
-      const Stencil& st = particles_.stencil[static_cast<std::size_t>(member)];
+      Stencil st;
+      computeStencil(scene_.solver.shapeFunction, scene_.grid, halfWidth_, particles_.stencilPosition[static_cast<std::size_t>(member)], st);
       for (int j = 0; j < s; ++j)
         for (int k = 0; k < s; ++k)
           grid_.externalForce[static_cast<std::size_t>(st.base + j * nx + k)] += st.wx[k] * st.wy[j] * each;

@@ -36,9 +36,9 @@ std::size_t scatter(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, P
   const int nx = g.nodesX();
   const bool withGravity = Forces && (gravity[0] != 0.0 || gravity[1] != 0.0);
   for (std::size_t i = begin; i < end; ++i) {
-    Stencil& s = p.stencil[i];
-    if constexpr (Stencils)
-      if (!computeStencil<F>(g, invCell, halfWidth, p.position[i], s)) return i;
+    Stencil s;
+    if constexpr (Stencils) p.stencilPosition[i] = p.position[i];
+    if (!computeStencil<F>(g, invCell, halfWidth, p.stencilPosition[i], s)) return i;
     const double m = p.mass[i];
     const Vec2 mv = m * p.velocity[i];
     const double v = p.volume[i];
@@ -101,14 +101,16 @@ void zero(ScatterTarget t, int nodes, unsigned what) {
   }
 }
 
-template <int S, bool WithStrain>
-std::size_t gather(const Grid& g, const GridFields& grid, Particles& p, std::size_t begin, std::size_t end, double dt,
-                   double flip) {
+template <ShapeFunction F, bool WithStrain>
+std::size_t gather(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, const GridFields& grid, Particles& p,
+                   std::size_t begin, std::size_t end, double dt, double flip) {
+  constexpr int S = supportSize(F);
   const int nx = g.nodesX();
   const double pic = 1.0 - flip;
   std::size_t bad = kNone;
   for (std::size_t i = begin; i < end; ++i) {
-    const Stencil& s = p.stencil[i];
+    Stencil s;
+    computeStencil<F>(g, invCell, halfWidth, p.stencilPosition[i], s);  // inside: checked at the scatter
     Vec2 v = Vec2::Zero(), dv = Vec2::Zero();
     double lxx = 0.0, lxy = 0.0, lyx = 0.0, lyy = 0.0;
     for (int j = 0; j < S; ++j) {
@@ -135,12 +137,14 @@ std::size_t gather(const Grid& g, const GridFields& grid, Particles& p, std::siz
   return bad;
 }
 
-template <int S>
-void strainIncrements(const Grid& g, const GridFields& grid, Particles& p, std::size_t begin, std::size_t end,
-                      double dt) {
+template <ShapeFunction F>
+void strainIncrements(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, const GridFields& grid, Particles& p,
+                      std::size_t begin, std::size_t end, double dt) {
+  constexpr int S = supportSize(F);
   const int nx = g.nodesX();
   for (std::size_t i = begin; i < end; ++i) {
-    const Stencil& s = p.stencil[i];
+    Stencil s;
+    computeStencil<F>(g, invCell, halfWidth, p.stencilPosition[i], s);
     double lxx = 0.0, lxy = 0.0, lyx = 0.0, lyy = 0.0;
     for (int j = 0; j < S; ++j) {
       const int row = s.base + j * nx;
@@ -152,6 +156,25 @@ void strainIncrements(const Grid& g, const GridFields& grid, Particles& p, std::
     }
     p.strainIncrement[i] = Voigt(dt * lxx, dt * lyy, dt * (lxy + lyx));
   }
+}
+
+using GatherFn = std::size_t (*)(const Grid&, const Vec2&, const Vec2&, const GridFields&, Particles&, std::size_t,
+                                 std::size_t, double, double);
+using StrainFn = void (*)(const Grid&, const Vec2&, const Vec2&, const GridFields&, Particles&, std::size_t, std::size_t,
+                          double);
+
+template <ShapeFunction F>
+GatherFn gatherFor(bool withStrain) {
+  return withStrain ? gather<F, true> : gather<F, false>;
+}
+
+GatherFn gatherFor(ShapeFunction f, bool withStrain) {
+  switch (f) {
+    case ShapeFunction::Linear: return gatherFor<ShapeFunction::Linear>(withStrain);
+    case ShapeFunction::UGimp: return gatherFor<ShapeFunction::UGimp>(withStrain);
+    case ShapeFunction::BSpline2: return gatherFor<ShapeFunction::BSpline2>(withStrain);
+  }
+  return nullptr;
 }
 
 }  // namespace
@@ -203,19 +226,12 @@ void Solver::particleToGrid(unsigned what) {
 
 void Solver::gridToParticle(bool withStrainIncrements) {
   const std::size_t count = particles_.size();
-  const bool linear = scene_.solver.shapeFunction == ShapeFunction::Linear;
+  const GatherFn fn = gatherFor(scene_.solver.shapeFunction, withStrainIncrements);
   std::size_t bad = kNone;
 #pragma omp parallel num_threads(threads_)
   {
     const auto [b, e] = range(count, omp_get_thread_num(), omp_get_num_threads());
-    const double flip = scene_.solver.flip;
-    std::size_t mine;
-    if (linear)
-      mine = withStrainIncrements ? gather<2, true>(scene_.grid, grid_, particles_, b, e, dt_, flip)
-                                  : gather<2, false>(scene_.grid, grid_, particles_, b, e, dt_, flip);
-    else
-      mine = withStrainIncrements ? gather<3, true>(scene_.grid, grid_, particles_, b, e, dt_, flip)
-                                  : gather<3, false>(scene_.grid, grid_, particles_, b, e, dt_, flip);
+    const std::size_t mine = fn(scene_.grid, invCell_, halfWidth_, grid_, particles_, b, e, dt_, scene_.solver.flip);
     if (mine != kNone) {
 #pragma omp critical(ecm_mpm_failure)
       bad = std::min(bad, mine);
@@ -231,14 +247,13 @@ void Solver::gridToParticle(bool withStrainIncrements) {
 
 void Solver::computeStrainIncrements() {
   const std::size_t count = particles_.size();
-  const bool linear = scene_.solver.shapeFunction == ShapeFunction::Linear;
+  StrainFn fn = strainIncrements<ShapeFunction::Linear>;
+  if (scene_.solver.shapeFunction == ShapeFunction::UGimp) fn = strainIncrements<ShapeFunction::UGimp>;
+  if (scene_.solver.shapeFunction == ShapeFunction::BSpline2) fn = strainIncrements<ShapeFunction::BSpline2>;
 #pragma omp parallel num_threads(threads_)
   {
     const auto [b, e] = range(count, omp_get_thread_num(), omp_get_num_threads());
-    if (linear)
-      strainIncrements<2>(scene_.grid, grid_, particles_, b, e, dt_);
-    else
-      strainIncrements<3>(scene_.grid, grid_, particles_, b, e, dt_);
+    fn(scene_.grid, invCell_, halfWidth_, grid_, particles_, b, e, dt_);
   }
 }
 
