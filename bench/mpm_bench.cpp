@@ -1,12 +1,17 @@
 // MPM throughput: particle-updates per second (particles x steps / wall time) for one full
-// explicit step (P2G, grid update, G2P, stress update), on 1 and 2 threads.
+// explicit step (P2G, grid update, G2P, stress update), on 1 and 2 threads, and the same step
+// phase by phase (BM_Phase: only the named phase timed; output = one VTU snapshot).
 // Targets (issue 5): >= 20 M elastic particle-updates/s per core with linear shape functions,
 // >= 1.8x on 2 threads, <= 300 bytes per uncracked particle.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <filesystem>
+#include <string>
+#include <unistd.h>
 
 #include "mpm/solver.hpp"
+#include "mpm/vtu_writer.hpp"
 
 namespace {
 
@@ -87,5 +92,60 @@ void BM_CrackedStep(benchmark::State& state) {
   report(state, solver);
 }
 BENCHMARK(BM_CrackedStep)->Arg(1)->Arg(2)->ArgName("threads")->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// The USL step phase by phase: P2G (stencils, mass, momentum, forces), grid update (with
+// conditions), G2P (velocities, positions, strain increments), stress update, and output (one
+// VTU snapshot of all particles; a run writes one every output_interval, e.g. every 75 steps on
+// the DEN coarse scene). Only the named phase is timed; the step runs whole, so the state
+// evolves as in a run. Elastic: the 100k-particle block of BM_ElasticStep; cracked: the block of
+// BM_CrackedStep with every point cracked and softening.
+enum Phase : int { kP2G, kGrid, kG2P, kStress, kOutput };
+const char* const kPhaseNames[] = {"p2g", "grid", "g2p", "stress", "output"};
+
+void BM_Phase(benchmark::State& state) {
+  const auto phase = static_cast<Phase>(state.range(0));
+  const bool cracked = state.range(1) != 0;
+  const int threads = static_cast<int>(state.range(2));
+  Scene s = block(cracked ? 70 : 158, cracked ? concrete() : elastic(), ShapeFunction::Linear);
+  if (cracked) {
+    NodeCondition all;
+    all.name = "all";
+    all.box = {Vec2(-1.0, -1.0), Vec2(1e3, 1e3)};
+    Mat2 g;
+    g << 1.0, 0.2, 0.0, -0.1;
+    all.field = AffineVelocity{400.0 * g, Vec2(37.0, 37.0), History::hold(1.0)};
+    s.conditions = {all};
+  }
+  Solver solver(s, threads);
+  auto& p = solver.particles();
+  if (cracked) {
+    while (p.bands.size() < p.size()) solver.advance();
+  } else {
+    for (std::size_t i = 0; i < p.size(); ++i)
+      p.velocity[i] = Vec2(100.0 * std::sin(0.05 * p.position[i][1]), 50.0 * std::cos(0.03 * p.position[i][0]));
+  }
+  const std::filesystem::path vtu =
+      std::filesystem::temp_directory_path() / ("ecm-bench-phase-" + std::to_string(::getpid()) + ".vtu");
+  const auto timed = [&](Phase ph, auto&& run) {
+    if (ph != phase) state.PauseTiming();
+    run();
+    if (ph != phase) state.ResumeTiming();
+  };
+  for (auto _ : state) {
+    timed(kP2G, [&] { solver.particleToGrid(kStencils | kMassMomentum | kForces); });
+    timed(kGrid, [&] { solver.updateGrid(); });
+    timed(kG2P, [&] { solver.gridToParticle(true); });
+    timed(kStress, [&] { solver.updateStresses(); });
+    timed(kOutput, [&] { writeVtu(solver, vtu); });
+  }
+  std::filesystem::remove(vtu);
+  state.SetLabel(std::string(kPhaseNames[phase]) + (cracked ? ", cracked" : ", elastic"));
+  report(state, solver);
+}
+BENCHMARK(BM_Phase)
+    ->ArgsProduct({{kP2G, kGrid, kG2P, kStress, kOutput}, {0, 1}, {1, 2}})
+    ->ArgNames({"phase", "cracked", "threads"})
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
 
 }  // namespace

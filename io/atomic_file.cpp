@@ -26,12 +26,17 @@ void syncFolder(const std::filesystem::path& dir) {
 }  // namespace
 
 void writeFileAtomically(const std::filesystem::path& path, std::string_view text, Durability d) {
+  writeFileAtomically(path, {text}, d);
+}
+
+void writeFileAtomically(const std::filesystem::path& path, std::initializer_list<std::string_view> parts, Durability d) {
   std::filesystem::path tmp = path;
   tmp += ".tmp";
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) throw OutputError(path, std::strerror(errno));
   errno = 0;
-  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  bool written = true;
+  for (const std::string_view text : parts) written = written && std::fwrite(text.data(), 1, text.size(), f) == text.size();
   const bool flushed = written && std::fflush(f) == 0;
   const bool synced = flushed && (d == Durability::Rename || ::fsync(::fileno(f)) == 0);
   const int err = errno;

@@ -4,6 +4,9 @@
 #include <charconv>
 #include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <stdexcept>
+#include <type_traits>
 
 #include "io/atomic_file.hpp"
 
@@ -21,43 +24,56 @@ void put(std::string& out, double v) {
 // VTK XML with the arrays in one raw appended block (header_type UInt64, little endian): each
 // array is its byte count then its values, so a snapshot is written at memory speed (ASCII
 // formatting of every number cost ~25 % of a DEN coarse run at the scene's output interval).
+// Field values are Float32 (for looking at; particles_final.csv and checkpoints keep every
+// digit), positions Float64, ids and flags the smallest integer type: 103 bytes per particle.
 class AppendedArrays {
  public:
+  explicit AppendedArrays(std::string& data) : data_(data) { data_.clear(); }
   // The XML tag of an array whose values come next in the appended block.
   template <class T, class F>
-  void add(std::string& xml, const char* type, const char* name, int components, std::size_t n, F&& value) {
+  void add(std::string& xml, const char* name, int components, std::size_t n, F&& value) {
     xml += "        <DataArray type=\"";
-    xml += type;
+    xml += vtkType<T>();
     xml += "\" Name=\"";
     xml += name;
     xml += "\" NumberOfComponents=\"" + std::to_string(components) + "\" format=\"appended\" offset=\"" +
            std::to_string(data_.size()) + "\"/>\n";
     const std::uint64_t bytes = static_cast<std::uint64_t>(n) * static_cast<std::uint64_t>(components) * sizeof(T);
-    append(&bytes, sizeof bytes);
+    data_.append(reinterpret_cast<const char*>(&bytes), sizeof bytes);
     const std::size_t at = data_.size();
     data_.resize(at + bytes);
-    T* out = reinterpret_cast<T*>(data_.data() + at);
+    char* out = data_.data() + at;
     for (std::size_t i = 0; i < n; ++i)
-      for (int c = 0; c < components; ++c) *out++ = static_cast<T>(value(i, c));
+      for (int c = 0; c < components; ++c, out += sizeof(T)) {
+        const T v = static_cast<T>(value(i, c));
+        std::memcpy(out, &v, sizeof v);
+      }
   }
-  const std::string& data() const { return data_; }
 
  private:
-  void append(const void* p, std::size_t bytes) { data_.append(static_cast<const char*>(p), bytes); }
-  std::string data_;
+  template <class T>
+  static const char* vtkType() {
+    if constexpr (std::is_same_v<T, double>) return "Float64";
+    if constexpr (std::is_same_v<T, float>) return "Float32";
+    if constexpr (std::is_same_v<T, std::int32_t>) return "Int32";
+    if constexpr (std::is_same_v<T, std::uint8_t>) return "UInt8";
+  }
+  std::string& data_;
 };
 
 static_assert(std::endian::native == std::endian::little, "the VTU files declare byte_order LittleEndian");
 
 }  // namespace
 
-void writeVtu(const Solver& solver, const std::filesystem::path& path) {
+void writeVtu(const Solver& solver, const std::filesystem::path& path, std::string* scratch) {
   const Particles& p = solver.particles();
   const std::size_t n = p.size();
+  if (n > static_cast<std::size_t>(INT32_MAX)) throw std::length_error("VTU snapshot: more than 2^31 particles");
   auto band = [&](std::size_t i) -> const BandState* {
     return p.band[i] >= 0 ? &p.bands[static_cast<std::size_t>(p.band[i])] : nullptr;
   };
-  AppendedArrays a;
+  std::string own;
+  AppendedArrays a(scratch ? *scratch : own);
   std::string out;
   out += "<?xml version=\"1.0\"?>\n";
   out += "<!-- ecm-mpm particles; units: mm, N, MPa, t, s -->\n";
@@ -68,35 +84,33 @@ void writeVtu(const Solver& solver, const std::filesystem::path& path) {
   out += "</DataArray>\n    </FieldData>\n";
   out += "    <Piece NumberOfPoints=\"" + std::to_string(n) + "\" NumberOfCells=\"" + std::to_string(n) + "\">\n";
   out += "      <PointData Scalars=\"damage\" Vectors=\"displacement\">\n";
-  a.add<double>(out, "Float64", "displacement", 3, n, [&](std::size_t i, int c) { return c < 2 ? p.displacement[i][c] : 0.0; });
-  a.add<double>(out, "Float64", "velocity", 3, n, [&](std::size_t i, int c) { return c < 2 ? p.velocity[i][c] : 0.0; });
-  a.add<double>(out, "Float64", "stress", 3, n, [&](std::size_t i, int c) { return p.stress[i][c]; });  // xx, yy, xy (MPa)
-  a.add<double>(out, "Float64", "strain", 3, n, [&](std::size_t i, int c) { return p.strain[i][c]; });  // xx, yy, gamma_xy
-  a.add<double>(out, "Float64", "damage", 1, n, [&](std::size_t i, int) { return solver.damage(i); });
-  a.add<double>(out, "Float64", "crack_normal", 3, n, [&](std::size_t i, int c) {
+  a.add<float>(out, "displacement", 3, n, [&](std::size_t i, int c) { return c < 2 ? p.displacement[i][c] : 0.0; });
+  a.add<float>(out, "velocity", 3, n, [&](std::size_t i, int c) { return c < 2 ? p.velocity[i][c] : 0.0; });
+  a.add<float>(out, "stress", 3, n, [&](std::size_t i, int c) { return p.stress[i][c]; });  // xx, yy, xy (MPa)
+  a.add<float>(out, "strain", 3, n, [&](std::size_t i, int c) { return p.strain[i][c]; });  // xx, yy, gamma_xy
+  a.add<float>(out, "damage", 1, n, [&](std::size_t i, int) { return solver.damage(i); });
+  a.add<float>(out, "crack_normal", 3, n, [&](std::size_t i, int c) {
     const BandState* b = band(i);
     return b && c < 2 ? b->crackNormal[c] : 0.0;
   });
-  a.add<double>(out, "Float64", "jump", 3, n, [&](std::size_t i, int c) {
+  a.add<float>(out, "jump", 3, n, [&](std::size_t i, int c) {
     const BandState* b = band(i);
     return b && c < 2 ? b->jump[c] : 0.0;
   });
-  a.add<double>(out, "Float64", "opening", 1, n, [&](std::size_t i, int) {
+  a.add<float>(out, "opening", 1, n, [&](std::size_t i, int) {
     const BandState* b = band(i);
     return b ? b->normalJump() : 0.0;
   });
-  a.add<double>(out, "Float64", "material", 1, n, [&](std::size_t i, int) { return static_cast<double>(p.material[i]); });
-  a.add<double>(out, "Float64", "cracked", 1, n, [&](std::size_t i, int) { return p.band[i] >= 0 ? 1.0 : 0.0; });
+  a.add<std::uint8_t>(out, "material", 1, n, [&](std::size_t i, int) { return p.material[i]; });
+  a.add<std::uint8_t>(out, "cracked", 1, n, [&](std::size_t i, int) { return p.band[i] >= 0 ? 1 : 0; });
   out += "      </PointData>\n      <Points>\n";
-  a.add<double>(out, "Float64", "position", 3, n, [&](std::size_t i, int c) { return c < 2 ? p.position[i][c] : 0.0; });
+  a.add<double>(out, "position", 3, n, [&](std::size_t i, int c) { return c < 2 ? p.position[i][c] : 0.0; });
   out += "      </Points>\n      <Cells>\n";
-  a.add<std::int64_t>(out, "Int64", "connectivity", 1, n, [](std::size_t i, int) { return i; });
-  a.add<std::int64_t>(out, "Int64", "offsets", 1, n, [](std::size_t i, int) { return i + 1; });
-  a.add<std::uint8_t>(out, "UInt8", "types", 1, n, [](std::size_t, int) { return 1; });  // VTK_VERTEX
+  a.add<std::int32_t>(out, "connectivity", 1, n, [](std::size_t i, int) { return i; });
+  a.add<std::int32_t>(out, "offsets", 1, n, [](std::size_t i, int) { return i + 1; });
+  a.add<std::uint8_t>(out, "types", 1, n, [](std::size_t, int) { return 1; });  // VTK_VERTEX
   out += "      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n   _";
-  out += a.data();
-  out += "\n  </AppendedData>\n</VTKFile>\n";
-  io::writeFileAtomically(path, out);
+  io::writeFileAtomically(path, {out, scratch ? *scratch : own, "\n  </AppendedData>\n</VTKFile>\n"});
 }
 
 VtuSeries::VtuSeries(std::filesystem::path dir, std::string stem) : dir_(std::move(dir)), stem_(std::move(stem)) {}
@@ -109,7 +123,7 @@ std::string VtuSeries::fileName(std::size_t index) const {
 
 void VtuSeries::add(const Solver& solver) {
   const std::string file = fileName(entries_.size());
-  writeVtu(solver, dir_ / file);
+  writeVtu(solver, dir_ / file, &scratch_);
   entries_.emplace_back(solver.time(), file);
   writeIndex();
 }

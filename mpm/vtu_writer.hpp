@@ -1,7 +1,8 @@
 #pragma once
-// Particle snapshots for ParaView: one ASCII .vtu per output step (points as vertex cells) and
-// a .pvd index listing them with their times. Fields: displacement, velocity, stress, damage,
-// crack normal, jump and normal opening, material id, cracked flag.
+// Particle snapshots for ParaView: one .vtu per output step (points as vertex cells, arrays raw
+// appended: Float32 fields, Float64 positions) and a .pvd index listing them with their times.
+// Fields: displacement, velocity, stress, strain, damage, crack normal, jump and normal opening,
+// material id, cracked flag.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -11,7 +12,8 @@
 namespace ecm::mpm {
 
 // Writes the solver's particles to `path` (atomically: a reader never sees half a file).
-void writeVtu(const Solver& solver, const std::filesystem::path& path);
+// `scratch`: a buffer kept between snapshots (no fresh pages to fault in for every one).
+void writeVtu(const Solver& solver, const std::filesystem::path& path, std::string* scratch = nullptr);
 
 // The .pvd collection of a run; add() writes a snapshot and rewrites the index.
 class VtuSeries {
@@ -32,6 +34,7 @@ class VtuSeries {
   std::filesystem::path dir_;
   std::string stem_;
   std::vector<std::pair<double, std::string>> entries_;  // time (s), file name
+  std::string scratch_;  // the appended arrays of the last snapshot, reused
 };
 
 }  // namespace ecm::mpm

@@ -62,6 +62,17 @@ TEST(Run, WritesHistorySummarySnapshots) {
     EXPECT_EQ(xy[0], final.rows[i][0]) << i;
     EXPECT_EQ(xy[1], final.rows[i][1]) << i;
   }
+  // Field values are Float32: the damage of the last snapshot is the final damage rounded to float.
+  const std::size_t dtag = vtu.find("<DataArray type=\"Float32\" Name=\"damage\" NumberOfComponents=\"1\" format=\"appended\" offset=\"");
+  ASSERT_NE(dtag, std::string::npos);
+  const std::size_t doffset = std::stoul(vtu.substr(vtu.find("offset=\"", dtag) + 8));
+  std::memcpy(&bytes, vtu.data() + start + doffset, sizeof bytes);
+  EXPECT_EQ(bytes, 4 * r.particles);
+  for (std::size_t i = 0; i < r.particles; i += 7) {
+    float d = 0.0f;
+    std::memcpy(&d, vtu.data() + start + doffset + 8 + 4 * i, sizeof d);
+    EXPECT_EQ(d, static_cast<float>(final.rows[i][2])) << i;
+  }
   EXPECT_EQ(vtu.substr(vtu.size() - 30), "\n  </AppendedData>\n</VTKFile>\n");
 }
 
