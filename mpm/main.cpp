@@ -16,6 +16,7 @@
 #include "io/output_error.hpp"
 #include "io/yaml_input.hpp"
 #include "mpm/checkpoint.hpp"
+#include "mpm/presets.hpp"
 #include "mpm/run.hpp"
 #include "mpm/scene_yaml.hpp"
 
@@ -61,7 +62,7 @@ int main(int argc, char** argv) {
   CLI::App app{"ecm-mpm: explicit MPM with the enriched constitutive model (units: mm, N, MPa, t, s)"};
   std::string scenePath;
   ecm::mpm::RunOptions options;
-  std::string outDir, restartDir;
+  std::string outDir, restartDir, preset;
   bool noVtu = false, noPlot = false, quiet = false;
   app.add_option("scene", scenePath, "scene file (YAML)")->required()->check(CLI::ExistingFile);
   app.add_option("-o,--output,--out", outDir, "output folder (default: SCENE-NAME-out next to the working folder)");
@@ -70,13 +71,18 @@ int main(int argc, char** argv) {
   app.add_option("-t,--threads", options.threads, "OpenMP threads (0: default)")->check(CLI::NonNegativeNumber);
   app.add_option("--max-steps", options.maxSteps, "stop with a checkpoint once the run has made N steps (from t = 0)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--preset", preset,
+                 "fast | balanced | accurate: particles per cell, shape function, scheme and CFL from the measured "
+                 "speed/accuracy presets (mpm/presets.hpp), replacing the scene's")
+      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
   app.add_flag("--no-vtu", noVtu, "do not write VTU particle snapshots");
   app.add_flag("--no-plot", noPlot, "do not render the load-displacement PNG");
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
   CLI11_PARSE(app, argc, argv);
 
   try {
-    const ecm::mpm::Scene scene = ecm::mpm::loadSceneFile(scenePath);
+    ecm::mpm::Scene scene = ecm::mpm::loadSceneFile(scenePath);
+    if (!preset.empty()) ecm::mpm::applyPreset(*ecm::mpm::findPreset(preset), scene);
     if (!restartDir.empty()) {
       const auto normal = [](const std::string& p) { return std::filesystem::path(p).lexically_normal(); };
       if (!outDir.empty() && normal(outDir) != normal(restartDir)) {
@@ -92,8 +98,10 @@ int main(int argc, char** argv) {
     options.plot = !noPlot;
     options.progress = !quiet;
     options.sceneHash = fileHash(scenePath);
+    if (!preset.empty()) options.sceneHash = ecm::io::fnv1a64(preset, options.sceneHash);  // a restart needs the same preset
     options.stop = &stopRequested;
-    options.resumeCommand = "ecm-mpm " + shellWord(scenePath) + " --restart " + shellWord(options.outputDir.string());
+    options.resumeCommand = "ecm-mpm " + shellWord(scenePath) + (preset.empty() ? "" : " --preset " + preset) +
+                            " --restart " + shellWord(options.outputDir.string());
     installStopHandler();
     const ecm::mpm::RunResult r = ecm::mpm::runScene(scene, options);
     std::fprintf(stderr, "%s: %ld steps, %zu particles, peak load %.6g N, %.2f s -> %s\n",

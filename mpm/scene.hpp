@@ -49,6 +49,7 @@ struct CheckpointSettings {
 
 struct Scene {
   std::string name = "scene";
+  std::string preset;       // the preset that set the discretisation knobs (mpm/presets.hpp), or empty
   Grid grid;
   double thickness = 1.0;  // mm (plane stress: the plate; plane strain: the slice)
   std::vector<MaterialParams> materials;

@@ -3,6 +3,7 @@
 #include <map>
 
 #include "io/material_yaml.hpp"
+#include "mpm/presets.hpp"
 
 namespace ecm::mpm {
 
@@ -93,7 +94,13 @@ Grid readGrid(const YamlMap& m) {
   return g;
 }
 
-SolverSettings readSolver(const YamlMap& m) {
+std::string presetOwns(const std::string& preset) {
+  return "set by preset '" + preset + "' (mpm/presets.hpp); remove the preset or this key";
+}
+
+SolverSettings readSolver(const YamlMap& m, const std::string& preset) {
+  if (!preset.empty())
+    for (const char* k : {"shape_function", "scheme", "cfl"}) m.reject(k, presetOwns(preset));
   SolverSettings s;
   const std::string scheme = m.getEnumOr("scheme", {"usf", "usl", "musl"}, "usl");
   s.scheme = scheme == "usf" ? UpdateScheme::USF : (scheme == "musl" ? UpdateScheme::MUSL : UpdateScheme::USL);
@@ -245,6 +252,9 @@ Scene readScene(const YamlMap& m) {
   s.name = m.getOr<std::string>("name", std::filesystem::path(m.file()).stem().string());
   s.grid = readGrid(m.child("grid"));
   s.thickness = m.getOr<double>("thickness", 1.0, Range::positive());
+  // A preset (mpm/presets.hpp) owns its knobs: the scene may not set them too.
+  const std::string preset = m.has("preset") ? m.getEnum("preset", {"fast", "balanced", "accurate"}) : "";
+  if (!preset.empty()) m.reject("particles_per_cell", presetOwns(preset));
   s.particlesPerCell = m.getOr<int>("particles_per_cell", 2, Range::closed(1.0, 8.0));
 
   std::map<std::string, int> names;
@@ -269,7 +279,8 @@ Scene readScene(const YamlMap& m) {
     }
   }
   if (s.bodies.empty()) m.fail("bodies", "needs at least one body");
-  if (m.has("solver")) s.solver = readSolver(m.child("solver"));
+  if (m.has("solver")) s.solver = readSolver(m.child("solver"), preset);
+  if (!preset.empty()) applyPreset(*findPreset(preset), s);
   s.endTime = m.get<double>("end_time", Range::positive());
   s.outputInterval = m.getOr<double>("output_interval", 0.0, Range::nonNegative());
   if (m.has("particle_snapshots")) {

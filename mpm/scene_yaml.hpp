@@ -6,6 +6,9 @@
 //   grid: {origin: [0, 0], cell_size: [10, 10], cells: [10, 12]}   # mm, mm, count
 //   thickness: 1                # mm
 //   particles_per_cell: 2       # k: k x k per cell
+//   preset: balanced            # optional: fast | balanced | accurate (mpm/presets.hpp) sets
+//                               # particles_per_cell and solver shape_function, scheme, cfl,
+//                               # which the scene may then not set itself
 //   materials:                  # inline maps (io/material_yaml.hpp format) or {file: NAME.yaml}
 //     - {file: den-concrete.yaml}
 //   bodies:                     # later bodies override earlier ones

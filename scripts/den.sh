@@ -7,6 +7,7 @@
 #   WHAT: coarse | medium | fine            enriched, load path 4b (P_s = 10 kN), data/den/den-4b-MESH.yaml
 #         all                               the three enriched meshes
 #         halfrate  (= coarse-halfrate)     coarse at half the loading rate (data/den/den-4b-coarse-halfrate.yaml)
+#         quarterrate (= coarse-quarterrate) coarse at a quarter of it (data/den/den-4b-coarse-quarterrate.yaml)
 #         4a-coarse                         load path 4a (P_s = 5 kN), coarse
 #         MESH-smeared | MESH-crackband     the 4b scene of MESH with data/materials/den-concrete-smeared.yaml
 #                                           (the band's law on the whole point) or den-concrete-crackband-MESH.yaml
@@ -26,19 +27,20 @@ out=${1:-results/den}
 shift || true
 [[ $# -gt 0 ]] || set -- coarse
 threads=${DEN_THREADS:-2}
-allRuns=(coarse medium fine coarse-halfrate 4a-coarse coarse-smeared medium-smeared fine-smeared
+allRuns=(coarse medium fine coarse-halfrate coarse-quarterrate 4a-coarse coarse-smeared medium-smeared fine-smeared
          coarse-crackband medium-crackband fine-crackband)
 runs=()
 for w in "$@"; do
   case "$w" in
     all) runs+=(coarse medium fine) ;;
     halfrate) runs+=(coarse-halfrate) ;;
+    quarterrate) runs+=(coarse-quarterrate) ;;
     contrast) runs+=(coarse-smeared medium-smeared fine-smeared coarse-crackband medium-crackband fine-crackband) ;;
     report) ;;
-    coarse | medium | fine | coarse-halfrate | 4a-coarse | *-smeared | *-crackband)
+    coarse | medium | fine | coarse-halfrate | coarse-quarterrate | 4a-coarse | *-smeared | *-crackband)
       [[ " ${allRuns[*]} " == *" $w "* ]] || { echo "error: unknown run '$w'" >&2; exit 2; }
       runs+=("$w") ;;
-    *) echo "usage: scripts/den.sh [OUT_DIR] [coarse|medium|fine|all|halfrate|4a-coarse|MESH-smeared|MESH-crackband|contrast|report]..." >&2; exit 2 ;;
+    *) echo "usage: scripts/den.sh [OUT_DIR] [coarse|medium|fine|all|halfrate|quarterrate|4a-coarse|MESH-smeared|MESH-crackband|contrast|report]..." >&2; exit 2 ;;
   esac
 done
 bin=${DEN_BIN:-./build/mpm/ecm-mpm}
@@ -51,7 +53,7 @@ sceneOf() {
   local run=$1 mesh=${1%%-*} variant=${1#*-}
   case "$run" in
     coarse | medium | fine) echo "data/den/den-4b-$run.yaml" ;;
-    coarse-halfrate) echo "data/den/den-4b-coarse-halfrate.yaml" ;;
+    coarse-halfrate | coarse-quarterrate) echo "data/den/den-4b-$run.yaml" ;;
     4a-coarse) echo "data/den/den-4a-coarse.yaml" ;;
     *)
       local material=den-concrete-smeared.yaml
@@ -221,6 +223,20 @@ for fam in enriched smeared crackband; do
   [[ $n -gt 1 ]] && families+=("$fam $n $pk $ds")
 done
 
+# Rate check: the change of the peak load and of the dissipated energy per halving of the loading
+# rate (coarse 22.2 mm/s -> halfrate 11.1 -> quarterrate 5.55), relative to the slower run.
+rates=()
+prev=""
+for name in coarse coarse-halfrate coarse-quarterrate; do
+  for r in "${rows[@]}"; do
+    set -- $r
+    [[ $1 == "$name" && $2 == completed ]] || continue
+    [[ -n $prev ]] && rates+=("$(awk -v a="$prev" -v b="$1 $3 $5" 'BEGIN { split(a, x, " "); split(b, y, " ");
+        printf "%s_to_%s %.4g %.4g", x[1], y[1], (x[2] - y[2]) / y[2], (x[3] - y[3]) / y[3] }')")
+    prev="$1 $3 $5"
+  done
+done
+
 # The table (stdout) and summary.json.
 {
   echo "{"
@@ -240,6 +256,13 @@ done
     sep=$([[ $i -lt $((${#families[@]} - 1)) ]] && echo "," || echo "")
     printf '    "%s": {"meshes": %s, "peak_load_spread": %s, "dissipated_spread": %s}%s\n' "$1" "$2" "$3" "$4" "$sep"
   done
+  echo "  },"
+  echo "  \"rate_check\": {"
+  for i in "${!rates[@]}"; do
+    set -- ${rates[$i]}
+    sep=$([[ $i -lt $((${#rates[@]} - 1)) ]] && echo "," || echo "")
+    printf '    "%s": {"peak_load_change": %s, "dissipated_change": %s}%s\n' "$1" "$2" "$3" "$sep"
+  done
   echo "  }"
   echo "}"
 } >"$out/summary.json"
@@ -251,6 +274,10 @@ done
 for f in "${families[@]}"; do
   set -- $f
   printf "mesh objectivity, %-9s (%s meshes): peak load spread %.1f %%, dissipated energy spread %.1f %%\n" "$1" "$2" "$(awk -v v="$3" 'BEGIN { print 100 * v }')" "$(awk -v v="$4" 'BEGIN { print 100 * v }')"
+done
+for r in "${rates[@]}"; do
+  set -- $r
+  printf "rate check, %-34s: peak load %+.2f %%, dissipated energy %+.2f %% (relative to the slower run)\n" "$1" "$(awk -v v="$2" 'BEGIN { print 100 * v }')" "$(awk -v v="$3" 'BEGIN { print 100 * v }')"
 done
 echo "(peak P and delta from the output rows of history.csv; KE/W: kinetic over external work,"
 echo " tmax: the largest while delta > 0 (tension phase), end: at the end;"

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "../io/temp_dir.hpp"
+#include "mpm/presets.hpp"
 #include "mpm/scene_yaml.hpp"
 
 namespace ecm::mpm::test {
@@ -137,6 +138,53 @@ TEST(SceneYaml, CheckpointKeysAreReadAndChecked) {
     expectContains(e.what(), "scene.yaml:10:");
     expectContains(e.what(), reason);
   }
+}
+
+}  // namespace
+}  // namespace ecm::mpm::test
+
+namespace ecm::mpm::test {
+namespace {
+
+// A preset sets particles per cell, shape function, scheme and CFL (mpm/presets.hpp); the scene
+// may not set them as well, and an unknown preset is refused with the allowed names.
+TEST(SceneYaml, PresetSetsItsKnobsAndOwnsThem) {
+  const std::string base = R"(name: t
+grid: {origin: [0, 0], cell_size: [10, 10], cells: [10, 12]}
+materials:
+  - {name: e, model: linear_elastic, hypothesis: plane_stress, youngs_modulus: 1000, poisson_ratio: 0.2, density: 1e-9}
+bodies:
+  - {rectangle: {min: [0, 0], max: [100, 100]}, material: e}
+end_time: 1e-3
+)";
+  for (const Preset& p : presets()) {
+    const Scene s = readScene(io::parseYaml(base + "preset: " + std::string(p.name) + "\nsolver: {flip: 0.9}\n", "scene.yaml"));
+    EXPECT_EQ(s.preset, p.name);
+    EXPECT_EQ(s.particlesPerCell, p.particlesPerCell);
+    EXPECT_EQ(s.solver.cfl, p.cfl);
+    EXPECT_EQ(s.solver.shapeFunction, p.shapeFunction);
+    EXPECT_EQ(s.solver.scheme, p.scheme);
+    EXPECT_EQ(s.solver.flip, 0.9);  // knobs outside the preset stay the scene's
+  }
+  // The presets order speed against accuracy: particles per cell and time steps never fewer.
+  const Preset& fast = *findPreset("fast");
+  const Preset& accurate = *findPreset("accurate");
+  EXPECT_LE(fast.particlesPerCell, accurate.particlesPerCell);
+  EXPECT_GE(fast.cfl, accurate.cfl);
+  EXPECT_EQ(readScene(io::parseYaml(base, "scene.yaml")).preset, "");
+
+  auto err = [&](const std::string& tail) { return inputError([&] { readScene(io::parseYaml(base + tail, "scene.yaml")); }); };
+  {
+    const auto e = err("preset: fast\nparticles_per_cell: 3\n");
+    EXPECT_EQ(e.line, 9);
+    expectContains(e.what(), "set by preset 'fast'");
+  }
+  {
+    const auto e = err("preset: accurate\nsolver:\n  flip: 0.99\n  cfl: 0.4\n");
+    EXPECT_EQ(e.line, 11);
+    expectContains(e.what(), "cfl");
+  }
+  expectContains(err("preset: turbo\n").what(), "fast");
 }
 
 }  // namespace
