@@ -20,9 +20,6 @@ Particles seedParticles(const Scene& scene) {
   const Grid& g = scene.grid;
   const int k = scene.particlesPerCell;
   const double volume = g.cellArea() / (k * k) * scene.thickness;
-  bool smeared = false;
-  for (const auto& m : scene.materials) smeared = smeared || m.model == ModelKind::SmearedCrack;
-
   struct Seed {
     Vec2 x;
     int body;
@@ -38,6 +35,12 @@ Particles seedParticles(const Scene& scene) {
         }
   if (seeds.empty()) throw std::invalid_argument("no particle lies inside the bodies of the scene (check the grid)");
 
+  // The smeared crack's integrity array exists only if a particle is made of a smeared-crack
+  // material: a material listed in the scene but used by no particle costs nothing.
+  bool smeared = false;
+  for (const Seed& sd : seeds)
+    smeared = smeared || scene.materials[static_cast<std::size_t>(scene.bodies[static_cast<std::size_t>(sd.body)].material)].model ==
+                             ModelKind::SmearedCrack;
   Particles p;
   p.resize(seeds.size(), smeared);
   const Vec2 lo = g.origin + 1.5 * g.cellSize, hi = g.origin + g.extent() - 1.5 * g.cellSize;

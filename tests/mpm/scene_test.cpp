@@ -55,6 +55,36 @@ TEST(Seeding, FillsShapesSubtractsHolesAndSetsVolumeAndMass) {
   EXPECT_NEAR(area1, pi * 100.0, 0.01 * area1);
 }
 
+// Model only what the scene requires: materials listed but used by no particle change neither
+// the memory per particle (the smeared crack's integrity array is not allocated) nor the time
+// step (the wave speed of a stiffer unused material is ignored); a used one does.
+TEST(Seeding, MaterialsNoParticleUsesCostNothing) {
+  Scene s;
+  s.grid = {Vec2::Zero(), Vec2(1.0, 1.0), 20, 20};
+  s.materials = {elasticMaterial()};
+  s.bodies = {{Shape::rectangle(Vec2(2, 2), Vec2(18, 18)), 0, false, Vec2::Zero()}};
+  const Solver plain(s, 1);
+
+  MaterialParams smeared = paperConcrete();
+  smeared.name = "smeared";
+  smeared.model = ModelKind::SmearedCrack;
+  smeared.fractureEnergy = 0.11;
+  smeared.regularisedForSize = 1.0;
+  MaterialParams stiff = paperConcrete();
+  stiff.name = "stiff";
+  stiff.elastic.youngsModulus = 200000.0;
+  s.materials.push_back(smeared);
+  s.materials.push_back(stiff);
+  const Solver listed(s, 1);
+  EXPECT_EQ(listed.particles().bytesPerParticle(), plain.particles().bytesPerParticle());
+  EXPECT_TRUE(listed.particles().integrity.empty());
+  EXPECT_EQ(listed.timeStep(), plain.timeStep());
+
+  s.bodies.push_back({Shape::rectangle(Vec2(2, 2), Vec2(4, 4)), 1, false, Vec2::Zero()});  // now used
+  const Solver used(s, 1);
+  EXPECT_EQ(used.particles().bytesPerParticle(), plain.particles().bytesPerParticle() + sizeof(double));
+}
+
 TEST(ParticleToGrid, ConservesMassAndMomentumAndInternalForcesSumToZero) {
   for (ShapeFunction f : {ShapeFunction::Linear, ShapeFunction::UGimp, ShapeFunction::BSpline2}) {
     Scene s = tensionBlock();
