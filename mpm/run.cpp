@@ -183,10 +183,15 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
     progress = std::make_unique<io::Progress>(scene.endTime, o);
   }
 
+  // A history row at every output step; a VTU snapshot at every snapshot_every-th one (row 0, N,
+  // 2N, ...) and at the end. The row count survives a restart, so the series goes on in step.
+  // (A half-step tolerance in finished(): round-off in the accumulated time adds no step.)
+  auto finished = [&] { return solver.time() >= scene.endTime - 0.5 * solver.timeStep(); };
   auto output = [&] {
+    const std::size_t row = history->rows();
     history->row(historyRow(solver));
     history->flush();
-    if (snapshots) snapshots->add(solver);
+    if (snapshots && (row % static_cast<std::size_t>(scene.snapshotEvery) == 0 || finished())) snapshots->add(solver);
   };
   // The peak of the driven conditions' reactions (all conditions' if none is driven) and loads.
   bool anyDriven = false;
@@ -237,8 +242,6 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
     return (options.stop && options.stop->load(std::memory_order_relaxed)) ||
            (options.maxSteps > 0 && solver.step() >= options.maxSteps);
   };
-  // A half-step tolerance so that round-off in the accumulated time does not add a step.
-  auto finished = [&] { return solver.time() >= scene.endTime - 0.5 * solver.timeStep(); };
 
   bool outputFailed = false;
   try {

@@ -62,6 +62,7 @@ void Scene::validate() const {
     fail("uGIMP needs at least 2 cells in x and y");
   if (!(endTime >= 0.0 && std::isfinite(endTime))) fail("end time must be >= 0 s");
   if (!(outputInterval >= 0.0 && std::isfinite(outputInterval))) fail("output interval must be >= 0 s");
+  if (snapshotEvery < 1) fail("snapshot_every must be >= 1");
   if (checkpoint.everySteps < 0) fail("checkpoint every_steps must be >= 1 (0: off)");
   if (!(checkpoint.everyMinutes >= 0.0 && std::isfinite(checkpoint.everyMinutes)))
     fail("checkpoint every_minutes must be > 0 (0: off)");

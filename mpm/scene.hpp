@@ -60,6 +60,7 @@ struct Scene {
   SolverSettings solver;
   double endTime = 0.0;         // s
   double outputInterval = 0.0;  // s between output steps (0: only the first and last)
+  int snapshotEvery = 1;        // a VTU snapshot at every N-th output step (and the last)
   std::vector<double> particleSnapshots;  // s, increasing: particles_t<time>.csv at each (maps of states)
   CheckpointSettings checkpoint;
 

@@ -283,6 +283,7 @@ Scene readScene(const YamlMap& m) {
   if (!preset.empty()) applyPreset(*findPreset(preset), s);
   s.endTime = m.get<double>("end_time", Range::positive());
   s.outputInterval = m.getOr<double>("output_interval", 0.0, Range::nonNegative());
+  s.snapshotEvery = m.getOr<int>("snapshot_every", 1, Range::closed(1.0, 1e9));
   if (m.has("particle_snapshots")) {
     s.particleSnapshots = m.getVector("particle_snapshots", 0, Range::positive());
     for (std::size_t i = 0; i < s.particleSnapshots.size(); ++i) {

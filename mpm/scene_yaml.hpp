@@ -44,6 +44,7 @@
 //                               # onto its stable branch (counted in summary.json) or stops the run
 //   end_time: 1e-3              # s
 //   output_interval: 1e-5       # s (0: first and last step only)
+//   snapshot_every: 10          # optional: a VTU snapshot every N-th output step (default 1)
 //   particle_snapshots: [2e-4]  # s, increasing, optional: particles_t<time>.csv (x, y, damage,
 //                               # material, opening) at the first step at or past each time
 //   checkpoint:                 # optional: DIR/checkpoint.bin every N steps and/or M minutes

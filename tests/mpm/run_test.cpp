@@ -76,6 +76,33 @@ TEST(Run, WritesHistorySummarySnapshots) {
   EXPECT_EQ(vtu.substr(vtu.size() - 30), "\n  </AppendedData>\n</VTKFile>\n");
 }
 
+// snapshot_every N: VTU snapshots at output rows 0, N, 2N, ... and at the last row; the history
+// keeps every row. Times in the .pvd index are those of the history rows.
+TEST(Run, SnapshotEveryNthOutputRowAndTheLast) {
+  TempDir tmp;
+  Scene s = tensionBlock();
+  s.endTime = 1e-4;
+  s.outputInterval = 1e-5;  // 11 rows: 0 .. 10
+  s.snapshotEvery = 4;      // rows 0, 4, 8 and the last, 10
+  RunOptions o;
+  o.outputDir = tmp.path() / "out";
+  o.plot = false;
+  o.progress = false;
+  const RunResult r = runScene(s, o);
+  ASSERT_TRUE(r.completed) << r.error;
+  const io::CsvTable h = io::readCsv(o.outputDir / "history.csv");
+  ASSERT_EQ(h.rows.size(), 11u);
+  const std::string pvd = readFile(o.outputDir / "particles.pvd");
+  std::vector<double> times;
+  for (std::size_t at = pvd.find("timestep=\""); at != std::string::npos; at = pvd.find("timestep=\"", at + 1))
+    times.push_back(std::stod(pvd.substr(at + 10)));
+  const std::vector<std::size_t> rows{0, 4, 8, 10};
+  ASSERT_EQ(times.size(), rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) EXPECT_DOUBLE_EQ(times[k], h.rows[rows[k]][0]) << k;
+  EXPECT_TRUE(std::filesystem::exists(o.outputDir / "particles_00003.vtu"));
+  EXPECT_FALSE(std::filesystem::exists(o.outputDir / "particles_00004.vtu"));
+}
+
 TEST(Run, ParticleSnapshotsAtTheRequestedTimes) {
   // One CSV per requested time, written at the first step at or past it, with one row per
   // particle; the file of the last time equals particles_final.csv when that time ends the run.
