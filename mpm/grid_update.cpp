@@ -122,7 +122,7 @@ void Solver::addLoads() {
         continue;
       }
       Stencil st;
-      computeStencil(scene_.solver.shapeFunction, scene_.grid, halfWidth_, particles_.stencilPosition[static_cast<std::size_t>(member)], st);
+      expandStencil(scene_.solver.shapeFunction, particles_.stencilAt[static_cast<std::size_t>(member)], invCell_, halfWidth_, st);
       for (int j = 0; j < s; ++j)
         for (int k = 0; k < s; ++k)
           grid_.externalForce[static_cast<std::size_t>(st.base + j * nx + k)] += st.wx[k] * st.wy[j] * each;

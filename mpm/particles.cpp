@@ -14,12 +14,12 @@ void Particles::resize(std::size_t n, bool withIntegrity) {
   material.resize(n, 0);
   band.resize(n, -1);
   integrity.resize(withIntegrity ? n : 0, 1.0);
-  stencilPosition.resize(n, Vec2::Zero());
+  stencilAt.resize(n);
 }
 
 std::size_t Particles::bytesPerParticle() const {
   std::size_t b = sizeof(Vec2) * 3 + sizeof(double) * 2 + sizeof(Voigt) * 3 + sizeof(std::uint8_t) +
-                  sizeof(std::int32_t) + sizeof(Vec2);
+                  sizeof(std::int32_t) + sizeof(StencilAt);
   if (!integrity.empty()) b += sizeof(double);
   return b;
 }

@@ -23,10 +23,10 @@ struct Particles {
   std::vector<std::uint8_t> material;// index into the scene's materials
   std::vector<std::int32_t> band;    // index into `bands`, -1 while intact (enriched)
   std::vector<double> integrity;     // smeared crack only (empty if no smeared material)
-  // Where this step's shape functions are evaluated: the position at the step's first
-  // particle-to-grid transfer. The weights are recomputed from it where they are used (16 bytes
+  // Where this step's shape functions sit (first node and offsets), located at the step's first
+  // particle-to-grid transfer; the weights are expanded from it where they are used (24 bytes
   // instead of a stored stencil's 104; MUSL's second transfer needs the step-start weights).
-  std::vector<Vec2> stencilPosition; // mm
+  std::vector<StencilAt> stencilAt;
 
   std::vector<BandState> bands;      // side array: one per cracked enriched point
 

@@ -21,4 +21,12 @@ bool computeStencil(ShapeFunction f, const Grid& grid, const Vec2& halfWidth, co
   return false;
 }
 
+void expandStencil(ShapeFunction f, const StencilAt& at, const Vec2& invCell, const Vec2& halfWidth, Stencil& s) {
+  switch (f) {
+    case ShapeFunction::Linear: return expandStencil<ShapeFunction::Linear>(at, invCell, halfWidth, s);
+    case ShapeFunction::UGimp: return expandStencil<ShapeFunction::UGimp>(at, invCell, halfWidth, s);
+    case ShapeFunction::BSpline2: return expandStencil<ShapeFunction::BSpline2>(at, invCell, halfWidth, s);
+  }
+}
+
 }  // namespace ecm::mpm

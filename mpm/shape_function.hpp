@@ -1,7 +1,7 @@
 #pragma once
-// Shape functions as tensor products of 1D functions. A particle's stencil stores the 1D
+// Shape functions as tensor products of 1D functions. A particle's stencil holds the 1D
 // weights and derivatives per direction (S = 2 or 3 nodes each): N_ij = wx[i] wy[j],
-// grad N_ij = (gx[i] wy[j], wx[i] gy[j]). Computed once per step, shared by P2G and G2P.
+// grad N_ij = (gx[i] wy[j], wx[i] gy[j]). Located once per step (StencilAt), expanded where used.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -30,32 +30,40 @@ struct Stencil {
 
 namespace detail {
 
-// One direction. xi: position in cell units from the grid origin; cells: cells in this
-// direction; halfWidth: particle half-size in cell units (uGIMP). Returns false when the
-// stencil would reach outside the grid.
+// One direction, in two halves. locate1D: from xi (position in cell units from the grid origin)
+// the first node `base` of the stencil and r = xi - base (exact); false when the stencil would
+// reach outside the grid (cells in this direction; halfWidth: the particle's half-size in cell
+// units, uGIMP). weights1D: the 1D weights w and derivatives g (invH = 1 / cell size) from r.
 template <ShapeFunction F>
-inline bool stencil1D(double xi, int cells, double halfWidth, double invH, int& base, double* w, double* g) {
+inline bool locate1D(double xi, int cells, double halfWidth, int& base, double& r) {
   if constexpr (F == ShapeFunction::Linear) {
     if (!(xi >= 0.0 && xi <= cells)) return false;
     base = std::min(static_cast<int>(xi), cells - 1);
-    const double r = xi - base;
-    w[0] = 1.0 - r, w[1] = r;
-    g[0] = -invH, g[1] = invH;
-    return true;
   } else if constexpr (F == ShapeFunction::BSpline2) {
     if (!(xi >= 0.5 && xi < cells - 0.5)) return false;
     base = static_cast<int>(xi - 0.5);
-    const double r = xi - base;  // distance to node `base`, in [0.5, 1.5)
+  } else {
+    if (!(xi - halfWidth >= 0.0 && xi + halfWidth <= cells) || cells < 2) return false;
+    base = std::clamp(static_cast<int>(std::floor(xi - 0.5)), 0, cells - 2);
+  }
+  r = xi - base;
+  return true;
+}
+
+template <ShapeFunction F>
+inline void weights1D(double r, double halfWidth, double invH, double* w, double* g) {
+  if constexpr (F == ShapeFunction::Linear) {
+    w[0] = 1.0 - r, w[1] = r;
+    g[0] = -invH, g[1] = invH;
+  } else if constexpr (F == ShapeFunction::BSpline2) {
+    // r: distance to node `base`, in [0.5, 1.5)
     const double a = 1.5 - r, b = r - 1.0, c = r - 0.5;
     w[0] = 0.5 * a * a, w[1] = 0.75 - b * b, w[2] = 0.5 * c * c;
     g[0] = -a * invH, g[1] = -2.0 * b * invH, g[2] = c * invH;
-    return true;
   } else {
     const double l = halfWidth;
-    if (!(xi - l >= 0.0 && xi + l <= cells) || cells < 2) return false;
-    base = std::clamp(static_cast<int>(std::floor(xi - 0.5)), 0, cells - 2);
     for (int i = 0; i < 3; ++i) {
-      const double d = xi - (base + i), ad = std::abs(d), s = d < 0.0 ? -1.0 : 1.0;
+      const double d = r - i, ad = std::abs(d), s = d < 0.0 ? -1.0 : 1.0;
       if (ad < l) {
         w[i] = 1.0 - (d * d + l * l) / (2.0 * l), g[i] = -d / l * invH;
       } else if (ad <= 1.0 - l) {
@@ -67,25 +75,49 @@ inline bool stencil1D(double xi, int cells, double halfWidth, double invH, int& 
         w[i] = 0.0, g[i] = 0.0;
       }
     }
-    return true;
   }
 }
 
 }  // namespace detail
 
-// Fills the stencil of a particle at x; false when the particle (or its uGIMP domain, or its
+// Where a particle's stencil sits: its first node and its offsets from it in cell units. What
+// particles keep between the transfers of a step (24 bytes; the weights are recomputed from it).
+struct StencilAt {
+  Vec2 r = Vec2::Zero();
+  std::int32_t base = 0;
+};
+
+// Locates the stencil of a particle at x; false when the particle (or its uGIMP domain, or its
 // B-spline support) is not inside the grid.
 template <ShapeFunction F>
-inline bool computeStencil(const Grid& grid, const Vec2& invCell, const Vec2& halfWidth, const Vec2& x, Stencil& s) {
+inline bool locateStencil(const Grid& grid, const Vec2& invCell, const Vec2& halfWidth, const Vec2& x, StencilAt& at) {
   const double xi = (x[0] - grid.origin[0]) * invCell[0], eta = (x[1] - grid.origin[1]) * invCell[1];
   int bx = 0, by = 0;
-  if (!detail::stencil1D<F>(xi, grid.cellsX, halfWidth[0], invCell[0], bx, s.wx, s.gx)) return false;
-  if (!detail::stencil1D<F>(eta, grid.cellsY, halfWidth[1], invCell[1], by, s.wy, s.gy)) return false;
-  s.base = by * (grid.cellsX + 1) + bx;
+  if (!detail::locate1D<F>(xi, grid.cellsX, halfWidth[0], bx, at.r[0])) return false;
+  if (!detail::locate1D<F>(eta, grid.cellsY, halfWidth[1], by, at.r[1])) return false;
+  at.base = by * (grid.cellsX + 1) + bx;
+  return true;
+}
+
+// The weights and derivatives of a located stencil.
+template <ShapeFunction F>
+inline void expandStencil(const StencilAt& at, const Vec2& invCell, const Vec2& halfWidth, Stencil& s) {
+  s.base = at.base;
+  detail::weights1D<F>(at.r[0], halfWidth[0], invCell[0], s.wx, s.gx);
+  detail::weights1D<F>(at.r[1], halfWidth[1], invCell[1], s.wy, s.gy);
+}
+
+// Fills the stencil of a particle at x; false when it is not inside the grid (as locateStencil).
+template <ShapeFunction F>
+inline bool computeStencil(const Grid& grid, const Vec2& invCell, const Vec2& halfWidth, const Vec2& x, Stencil& s) {
+  StencilAt at;
+  if (!locateStencil<F>(grid, invCell, halfWidth, x, at)) return false;
+  expandStencil<F>(at, invCell, halfWidth, s);
   return true;
 }
 
 // Runtime dispatch for tests and setup code (inner loops use the template directly).
 bool computeStencil(ShapeFunction f, const Grid& grid, const Vec2& halfWidth, const Vec2& x, Stencil& s);
+void expandStencil(ShapeFunction f, const StencilAt& at, const Vec2& invCell, const Vec2& halfWidth, Stencil& s);
 
 }  // namespace ecm::mpm

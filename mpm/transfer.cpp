@@ -36,9 +36,10 @@ std::size_t scatter(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, P
   const int nx = g.nodesX();
   const bool withGravity = Forces && (gravity[0] != 0.0 || gravity[1] != 0.0);
   for (std::size_t i = begin; i < end; ++i) {
+    if constexpr (Stencils)
+      if (!locateStencil<F>(g, invCell, halfWidth, p.position[i], p.stencilAt[i])) return i;
     Stencil s;
-    if constexpr (Stencils) p.stencilPosition[i] = p.position[i];
-    if (!computeStencil<F>(g, invCell, halfWidth, p.stencilPosition[i], s)) return i;
+    expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
     const double m = p.mass[i];
     const Vec2 mv = m * p.velocity[i];
     const double v = p.volume[i];
@@ -110,7 +111,7 @@ std::size_t gather(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, co
   std::size_t bad = kNone;
   for (std::size_t i = begin; i < end; ++i) {
     Stencil s;
-    computeStencil<F>(g, invCell, halfWidth, p.stencilPosition[i], s);  // inside: checked at the scatter
+    expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
     Vec2 v = Vec2::Zero(), dv = Vec2::Zero();
     double lxx = 0.0, lxy = 0.0, lyx = 0.0, lyy = 0.0;
     for (int j = 0; j < S; ++j) {
@@ -144,7 +145,7 @@ void strainIncrements(const Grid& g, const Vec2& invCell, const Vec2& halfWidth,
   const int nx = g.nodesX();
   for (std::size_t i = begin; i < end; ++i) {
     Stencil s;
-    computeStencil<F>(g, invCell, halfWidth, p.stencilPosition[i], s);
+    expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
     double lxx = 0.0, lxy = 0.0, lyx = 0.0, lyy = 0.0;
     for (int j = 0; j < S; ++j) {
       const int row = s.base + j * nx;
