@@ -143,8 +143,16 @@ void BM_Phase(benchmark::State& state) {
   report(state, solver);
 }
 BENCHMARK(BM_Phase)
-    ->ArgsProduct({{kP2G, kGrid, kG2P, kStress, kOutput}, {0, 1}, {1, 2}})
+    ->ArgsProduct({{kP2G, kGrid, kG2P, kStress, kOutput}, {0}, {1, 2}})
     ->ArgNames({"phase", "cracked", "threads"})
+    ->UseRealTime()
+    ->Unit(benchmark::kMicrosecond);
+// The cracked block keeps stretching in its velocity field: a fixed number of steps keeps it
+// inside the grid (a few hundred steps would carry its edge particles out).
+BENCHMARK(BM_Phase)
+    ->ArgsProduct({{kP2G, kGrid, kG2P, kStress, kOutput}, {1}, {1, 2}})
+    ->ArgNames({"phase", "cracked", "threads"})
+    ->Iterations(40)
     ->UseRealTime()
     ->Unit(benchmark::kMicrosecond);
 
