@@ -15,7 +15,8 @@ enum class Durability {
 // Throws OutputError naming the path when any step fails (the temporary file is removed and an
 // existing PATH is left as it was).
 void writeFileAtomically(const std::filesystem::path& path, std::string_view text, Durability d = Durability::Rename);
-// The same for a file made of consecutive parts (no copy into one buffer first).
+// The same for a file made of consecutive parts (no copy into one buffer first). The one-text
+// form above calls this one with {text}.
 void writeFileAtomically(const std::filesystem::path& path, std::initializer_list<std::string_view> parts,
                          Durability d = Durability::Rename);
 

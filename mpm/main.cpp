@@ -56,6 +56,12 @@ std::uint64_t fileHash(const std::string& path) {
   return ecm::io::fnv1a64(text);
 }
 
+std::vector<std::string> presetNameList() {
+  std::vector<std::string> names;
+  for (const ecm::mpm::Preset& p : ecm::mpm::presets()) names.emplace_back(p.name);
+  return names;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -72,9 +78,9 @@ int main(int argc, char** argv) {
   app.add_option("--max-steps", options.maxSteps, "stop with a checkpoint once the run has made N steps (from t = 0)")
       ->check(CLI::PositiveNumber);
   app.add_option("--preset", preset,
-                 "fast | balanced | accurate: particles per cell, shape function, scheme and CFL from the measured "
+                 ecm::mpm::presetNames() + ": particles per cell, shape function, scheme and CFL from the measured "
                  "speed/accuracy presets (mpm/presets.hpp), replacing the scene's")
-      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
+      ->check(CLI::IsMember(presetNameList()));
   app.add_flag("--no-vtu", noVtu, "do not write VTU particle snapshots");
   app.add_flag("--no-plot", noPlot, "do not render the load-displacement PNG");
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");

@@ -29,6 +29,12 @@ const Preset* findPreset(std::string_view name) {
   return nullptr;
 }
 
+std::string presetNames() {
+  std::string names;
+  for (const Preset& p : kPresets) names += (names.empty() ? "" : ", ") + std::string(p.name);
+  return names;
+}
+
 void applyPreset(const Preset& p, Scene& scene) {
   scene.preset = std::string(p.name);
   scene.particlesPerCell = p.particlesPerCell;

@@ -5,6 +5,7 @@
 // discretisation knobs below; a scene that names one may not set them itself (one source for
 // each knob). The mesh (cell size) stays the scene's: it is geometry, and H follows it.
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "mpm/scene.hpp"
@@ -22,6 +23,8 @@ struct Preset {
 std::span<const Preset> presets();
 // nullptr if no preset has this name.
 const Preset* findPreset(std::string_view name);
+// "fast, balanced, accurate": for messages.
+std::string presetNames();
 // Sets the preset's knobs on a scene and records its name.
 void applyPreset(const Preset& p, Scene& scene);
 

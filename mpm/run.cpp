@@ -187,11 +187,12 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
   // 2N, ...) and at the end. The row count survives a restart, so the series goes on in step.
   // (A half-step tolerance in finished(): round-off in the accumulated time adds no step.)
   auto finished = [&] { return solver.time() >= scene.endTime - 0.5 * solver.timeStep(); };
-  auto output = [&] {
+  auto output = [&](bool forceSnapshot = false) {
     const std::size_t row = history->rows();
     history->row(historyRow(solver));
     history->flush();
-    if (snapshots && (row % static_cast<std::size_t>(scene.snapshotEvery) == 0 || finished())) snapshots->add(solver);
+    if (snapshots && (forceSnapshot || row % static_cast<std::size_t>(scene.snapshotEvery) == 0 || finished()))
+      snapshots->add(solver);
   };
   // The peak of the driven conditions' reactions (all conditions' if none is driven) and loads.
   bool anyDriven = false;
@@ -269,7 +270,7 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
   } catch (const SimulationError& e) {
     result.error = e.what();
     try {
-      output();  // the state at the failure, for a look at what went wrong
+      output(true);  // the state at the failure (history row and snapshot), for a look at what went wrong
     } catch (const io::OutputError& o) {
       result.error += std::string("; then: ") + o.what();
       outputFailed = true;

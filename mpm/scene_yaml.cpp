@@ -253,7 +253,8 @@ Scene readScene(const YamlMap& m) {
   s.grid = readGrid(m.child("grid"));
   s.thickness = m.getOr<double>("thickness", 1.0, Range::positive());
   // A preset (mpm/presets.hpp) owns its knobs: the scene may not set them too.
-  const std::string preset = m.has("preset") ? m.getEnum("preset", {"fast", "balanced", "accurate"}) : "";
+  const std::string preset = m.has("preset") ? m.get<std::string>("preset") : "";
+  if (!preset.empty() && !findPreset(preset)) m.fail("preset", "unknown preset '" + preset + "' (allowed: " + presetNames() + ")");
   if (!preset.empty()) m.reject("particles_per_cell", presetOwns(preset));
   s.particlesPerCell = m.getOr<int>("particles_per_cell", 2, Range::closed(1.0, 8.0));
 

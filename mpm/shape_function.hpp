@@ -83,9 +83,10 @@ inline void weights1D(double r, double halfWidth, double invH, double* w, double
 // Where a particle's stencil sits: its first node and its offsets from it in cell units. What
 // particles keep between the transfers of a step (24 bytes; the weights are recomputed from it).
 struct StencilAt {
-  Vec2 r = Vec2::Zero();
+  double r[2] = {0.0, 0.0};  // plain doubles: an Eigen Vec2 (16-byte aligned) would pad this to 32 bytes
   std::int32_t base = 0;
 };
+static_assert(sizeof(StencilAt) == 24);
 
 // Locates the stencil of a particle at x; false when the particle (or its uGIMP domain, or its
 // B-spline support) is not inside the grid.

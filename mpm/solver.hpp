@@ -14,7 +14,8 @@ namespace ecm::mpm {
 
 // What particle-to-grid scatters (bit flags).
 enum Transfer : unsigned {
-  kStencils = 1u,      // recompute the shape weights from the positions first
+  kStencils = 1u,      // locate the particles' stencils (Particles::stencilAt) at their positions first;
+                       // every other transfer of the step expands the weights from them
   kMassMomentum = 2u,  // mass and momentum
   kForces = 4u,        // internal and external forces
 };

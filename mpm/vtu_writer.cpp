@@ -25,7 +25,7 @@ void put(std::string& out, double v) {
 // array is its byte count then its values, so a snapshot is written at memory speed (ASCII
 // formatting of every number cost ~25 % of a DEN coarse run at the scene's output interval).
 // Field values are Float32 (for looking at; particles_final.csv and checkpoints keep every
-// digit), positions Float64, ids and flags the smallest integer type: 103 bytes per particle.
+// digit), positions Float64, ids and flags the smallest integer type: 115 bytes per particle.
 class AppendedArrays {
  public:
   explicit AppendedArrays(std::string& data) : data_(data) { data_.clear(); }

@@ -226,15 +226,18 @@ done
 # Rate check: the change of the peak load and of the dissipated energy per halving of the loading
 # rate (coarse 22.2 mm/s -> halfrate 11.1 -> quarterrate 5.55), relative to the slower run.
 rates=()
+# Only neighbours in the sequence are compared (a missing halfrate run leaves no coarse-to-quarter pair).
 prev=""
 for name in coarse coarse-halfrate coarse-quarterrate; do
+  found=""
   for r in "${rows[@]}"; do
     set -- $r
     [[ $1 == "$name" && $2 == completed ]] || continue
-    [[ -n $prev ]] && rates+=("$(awk -v a="$prev" -v b="$1 $3 $5" 'BEGIN { split(a, x, " "); split(b, y, " ");
+    found="$1 $3 $5"
+    [[ -n $prev ]] && rates+=("$(awk -v a="$prev" -v b="$found" 'BEGIN { split(a, x, " "); split(b, y, " ");
         printf "%s_to_%s %.4g %.4g", x[1], y[1], (x[2] - y[2]) / y[2], (x[3] - y[3]) / y[3] }')")
-    prev="$1 $3 $5"
   done
+  prev=$found
 done
 
 # The table (stdout) and summary.json.

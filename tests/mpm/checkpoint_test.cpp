@@ -178,6 +178,33 @@ TEST(Checkpoint, StopAndResumeGivesTheSameOutputsBitwise) {
   EXPECT_EQ(j["steps"], whole.steps);
 }
 
+// With snapshot_every N the restarted run goes on with the same snapshot rows: the split run's
+// folder holds exactly the uninterrupted run's files, byte for byte (13 history rows, snapshots
+// at rows 0, 4, 8, 12).
+TEST(Checkpoint, StopAndResumeKeepsTheSnapshotRows) {
+  TempDir tmp;
+  Scene scene = crackingBlock();
+  scene.snapshotEvery = 4;
+  const RunResult whole = runScene(scene, options(tmp.path() / "whole"));
+  ASSERT_TRUE(whole.completed) << whole.error;
+  RunOptions first = options(tmp.path() / "split");
+  first.maxSteps = 137;  // between output rows 5 and 6
+  ASSERT_TRUE(runScene(scene, first).stopped);
+  RunOptions second = options(tmp.path() / "split");
+  second.restart = true;
+  ASSERT_TRUE(runScene(scene, second).completed);
+  fs::remove(tmp.path() / "whole" / "summary.json");
+  expectSameOutputs(tmp.path() / "whole", tmp.path() / "split");
+  std::size_t vtu = 0, files = 0;
+  for (const auto& e : fs::directory_iterator(tmp.path() / "split")) {
+    ++files;
+    vtu += e.path().extension() == ".vtu" ? 1 : 0;
+  }
+  EXPECT_EQ(vtu, 4u);
+  EXPECT_EQ(files, std::size_t(std::distance(fs::directory_iterator(tmp.path() / "whole"), fs::directory_iterator{})) + 1)
+      << "the split folder has the whole run's files and summary.json, nothing more";
+}
+
 // A stop request (the flag a SIGINT / SIGTERM handler sets) is honoured after the step in
 // progress; here it is set before the start, so the run stops at step 0 with a checkpoint.
 TEST(Checkpoint, StopFlagStopsWithACheckpointAndTheResumeMatches) {

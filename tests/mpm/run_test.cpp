@@ -62,17 +62,29 @@ TEST(Run, WritesHistorySummarySnapshots) {
     EXPECT_EQ(xy[0], final.rows[i][0]) << i;
     EXPECT_EQ(xy[1], final.rows[i][1]) << i;
   }
-  // Field values are Float32: the damage of the last snapshot is the final damage rounded to float.
-  const std::size_t dtag = vtu.find("<DataArray type=\"Float32\" Name=\"damage\" NumberOfComponents=\"1\" format=\"appended\" offset=\"");
+  // Field values are Float32: the displacement of the last snapshot is the final position less
+  // the seeding position (particles_final.csv, first snapshot's positions), rounded to float.
+  const std::string first = readFile(o.outputDir / "particles_00000.vtu");
+  const std::size_t firstStart = first.find('_', first.find("<AppendedData encoding=\"raw\">")) + 1;
+  const std::size_t dtag = vtu.find("<DataArray type=\"Float32\" Name=\"displacement\" NumberOfComponents=\"3\" format=\"appended\" offset=\"");
   ASSERT_NE(dtag, std::string::npos);
   const std::size_t doffset = std::stoul(vtu.substr(vtu.find("offset=\"", dtag) + 8));
   std::memcpy(&bytes, vtu.data() + start + doffset, sizeof bytes);
-  EXPECT_EQ(bytes, 4 * r.particles);
+  EXPECT_EQ(bytes, 3 * 4 * r.particles);
+  double largest = 0.0;
   for (std::size_t i = 0; i < r.particles; i += 7) {
-    float d = 0.0f;
-    std::memcpy(&d, vtu.data() + start + doffset + 8 + 4 * i, sizeof d);
-    EXPECT_EQ(d, static_cast<float>(final.rows[i][2])) << i;
+    float u[3];
+    double x0[2];
+    std::memcpy(u, vtu.data() + start + doffset + 8 + 12 * i, sizeof u);
+    std::memcpy(x0, first.data() + firstStart + offset + 8 + 24 * i, sizeof x0);
+    for (int c = 0; c < 2; ++c) {
+      const double exact = final.rows[i][static_cast<std::size_t>(c)] - x0[c];
+      EXPECT_NEAR(u[c], exact, 1e-6 * std::abs(exact) + 1e-12) << i;
+      largest = std::max(largest, std::abs(exact));
+    }
+    EXPECT_EQ(u[2], 0.0f);
   }
+  EXPECT_GT(largest, 1e-6) << "the check needs a block that moved";
   EXPECT_EQ(vtu.substr(vtu.size() - 30), "\n  </AppendedData>\n</VTKFile>\n");
 }
 
@@ -132,6 +144,7 @@ TEST(Run, FailureKeepsOutputsReadableAndExplainsInSummary) {
   s.bodies = {{Shape::rectangle(Vec2(60.0, 10.0), Vec2(90.0, 30.0)), 0, false, Vec2(2e5, 0.0)}};
   s.endTime = 1e-3;
   s.outputInterval = 1e-5;
+  s.snapshotEvery = 1000;  // only row 0 on schedule: the failure's own snapshot must still be written
   RunOptions o;
   o.outputDir = tmp.path() / "out";
   o.progress = false;
@@ -141,6 +154,7 @@ TEST(Run, FailureKeepsOutputsReadableAndExplainsInSummary) {
   EXPECT_NE(r.error.find("left the grid"), std::string::npos) << r.error;
   const io::CsvTable h = io::readCsv(o.outputDir / "history.csv");
   EXPECT_GE(h.rows.size(), 2u);
+  EXPECT_TRUE(std::filesystem::exists(o.outputDir / "particles_00001.vtu")) << "the state at the failure";
   const auto j = nlohmann::json::parse(readFile(o.outputDir / "summary.json"));
   EXPECT_EQ(j["status"], "failed");
   EXPECT_NE(j["error"].get<std::string>().find("left the grid"), std::string::npos);
