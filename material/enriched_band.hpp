@@ -63,12 +63,17 @@ class EnrichedBand {
                             std::optional<BandState>& onset, SnapBackPolicy policy = SnapBackPolicy::Report) const {
     const Voigt end = strain + strainIncrement;
     const Voigt s = stiffness() * end;
-    // Y <= (c11 + |c12|)/2 |sigma|^2: most intact updates stop here, as cheap as elastic.
-    if (onsetBound_ * (s[0] * s[0] + s[1] * s[1] + 2.0 * s[2] * s[2]) < law_.onsetDrivingForce()) {
+    if (surelyIntact(s)) {
       strain = end;
       return {s, stiffness()};
     }
     return updateIntactSlow(strain, strainIncrement, size, onset, policy);
+  }
+  // A cheap sufficient test that the elastic stress s cannot reach onset:
+  // Y <= (c11 + |c12|)/2 |sigma|^2 < F(D = 0). Most intact updates stop here, as cheap as elastic
+  // (explicit MPM calls it inline, without building an UpdateResult).
+  bool surelyIntact(const Voigt& s) const {
+    return onsetBound_ * (s[0] * s[0] + s[1] * s[1] + 2.0 * s[2] * s[2]) < law_.onsetDrivingForce();
   }
   UpdateResult updateCracked(BandState& band, Voigt& strain, const Voigt& strainIncrement,
                              SnapBackPolicy policy = SnapBackPolicy::Report) const;

@@ -65,10 +65,12 @@ void Solver::updateStresses() {
   Particles& p = particles_;
   const std::size_t count = p.size();
   const int levels = scene_.solver.substepLevels;
-  // Dissipation summed per chunk of the dynamic schedule (each chunk is one thread's, in order),
-  // then over the chunks in order: the same bits for any thread count and schedule.
+  // Dissipation summed per chunk in particle order (a local sum, stored once: a shared
+  // per-particle accumulator put two threads on one cache line and cost half the step), then
+  // over the chunks in order: the same bits for any thread count and schedule.
   constexpr std::size_t kChunk = 512;
-  std::vector<double> chunkDissipation(count / kChunk + 1, 0.0);
+  const std::size_t chunks = (count + kChunk - 1) / kChunk;
+  std::vector<double> chunkDissipation(chunks, 0.0);
   long retries = 0, released = 0;
   const SnapBackPolicy policy = scene_.solver.snapBack;
   Failure failure;
@@ -78,53 +80,67 @@ void Solver::updateStresses() {
     std::vector<Onset>& mine = onsets[static_cast<std::size_t>(omp_get_thread_num())];
     // Dynamic: cracked points cost ~100 intact ones and cluster in space. Each point's update
     // is independent of the others, so the schedule does not change any result.
-#pragma omp for schedule(dynamic, kChunk) nowait
-    for (std::size_t i = 0; i < count; ++i) {
-      const MaterialKernel& k = kernels_[p.material[i]];
-      const Voigt& d = p.strainIncrement[i];
-      UpdateResult r;
-      std::string what;
-      switch (k.kind) {
-        case ModelKind::LinearElastic:
-          p.strain[i] += d;
-          p.stress[i] = k.stiffness * p.strain[i];
-          break;
-        case ModelKind::SmearedCrack: {
-          SmearedCrack::State s{p.strain[i], p.integrity[i]};
-          r = k.smeared->update(s, d);
-          p.strain[i] = s.strain;
-          p.integrity[i] = s.integrity;
-          p.stress[i] = r.stress;
-          chunkDissipation[i / kChunk] += r.dissipation * p.volume[i];
-          break;
-        }
-        case ModelKind::Enriched: {
-          const std::int32_t bi = p.band[i];
-          std::optional<BandState> onset;
-          try {
-            r = updateEnriched(*k.enriched, p.strain[i], bi >= 0 ? &p.bands[static_cast<std::size_t>(bi)] : nullptr, d,
-                               size_, onset, levels, policy, retries);
-          } catch (const std::exception& ex) {
-            r.status = UpdateStatus::NotConverged;
-            what = ex.what();
-          }
-          if (r.converged()) {
+#pragma omp for schedule(dynamic, 1) nowait
+    for (std::size_t c = 0; c < chunks; ++c) {
+      double chunkSum = 0.0;
+      const std::size_t end = std::min(count, (c + 1) * kChunk);
+      for (std::size_t i = c * kChunk; i < end; ++i) {
+        const MaterialKernel& k = kernels_[p.material[i]];
+        const Voigt& d = p.strainIncrement[i];
+        UpdateResult r;
+        std::string what;
+        switch (k.kind) {
+          case ModelKind::LinearElastic:
+            p.strain[i] += d;
+            p.stress[i] = k.stiffness * p.strain[i];
+            break;
+          case ModelKind::SmearedCrack: {
+            SmearedCrack::State s{p.strain[i], p.integrity[i]};
+            r = k.smeared->update(s, d);
+            p.strain[i] = s.strain;
+            p.integrity[i] = s.integrity;
             p.stress[i] = r.stress;
-            chunkDissipation[i / kChunk] += r.dissipation * p.volume[i];
-            released += r.released ? 1 : 0;
-            if (onset) mine.push_back({i, *onset});
+            chunkSum += r.dissipation * p.volume[i];
+            break;
           }
-          break;
+          case ModelKind::Enriched: {
+            const std::int32_t bi = p.band[i];
+            if (bi < 0) {  // an intact point far from onset: elastic, no result to build
+              const Voigt end = p.strain[i] + d;
+              const Voigt s = k.stiffness * end;
+              if (k.enriched->surelyIntact(s) && s.allFinite()) {
+                p.strain[i] = end;
+                p.stress[i] = s;
+                break;
+              }
+            }
+            std::optional<BandState> onset;
+            try {
+              r = updateEnriched(*k.enriched, p.strain[i], bi >= 0 ? &p.bands[static_cast<std::size_t>(bi)] : nullptr,
+                                 d, size_, onset, levels, policy, retries);
+            } catch (const std::exception& ex) {
+              r.status = UpdateStatus::NotConverged;
+              what = ex.what();
+            }
+            if (r.converged()) {
+              p.stress[i] = r.stress;
+              if (r.dissipation != 0.0) chunkSum += r.dissipation * p.volume[i];
+              released += r.released ? 1 : 0;
+              if (onset) mine.push_back({i, *onset});
+            }
+            break;
+          }
         }
-      }
-      if (!r.converged() || !p.stress[i].allFinite()) {
+        if (!r.converged() || !p.stress[i].allFinite()) {
 #pragma omp critical(ecm_mpm_failure)
-        if (i < failure.particle) {
-          failure.particle = i;
-          failure.result = r;
-          failure.what = what;
+          if (i < failure.particle) {
+            failure.particle = i;
+            failure.result = r;
+            failure.what = what;
+          }
         }
       }
+      chunkDissipation[c] = chunkSum;
     }
   }
   // New bands in particle order, so that indices do not depend on the thread count.
