@@ -46,14 +46,14 @@ class BandDamageLaw {
     double integrityPower = 0;  // x0^n (0: not computed; only loading evaluations need it)
   };
   LoadingSurface loadingSurface(double integrity) const {
-    return {integrity, damageFunction(law_, integrity), false, std::pow(integrity, law_.softeningExponent)};
+    const double xn = std::pow(integrity, law_.softeningExponent);
+    return {integrity, damageFunction(law_, integrity, xn), false, xn};
   }
   // The same surface, but evaluate() follows the monotonic loading envelope: x solves F(x) = Y
   // without the irreversibility cap, with the loading tangent. Smooth across the surface, it is
   // the branch a damage corrector iterates on (no loading/unloading kink inside Newton).
-  LoadingSurface envelope(double integrity) const {
-    return {integrity, damageFunction(law_, integrity), true, std::pow(integrity, law_.softeningExponent)};
-  }
+  LoadingSurface envelope(double integrity) const { return envelope(loadingSurface(integrity)); }
+  static LoadingSurface envelope(const LoadingSurface& s) { return {s.integrity, s.threshold, true, s.integrityPower}; }
 
   // Pure: does not change any state. The surface is that of the start of the increment.
   // With loadingTangent, a point exactly on the loading surface gets the one-sided loading
@@ -65,6 +65,10 @@ class BandDamageLaw {
 
   // Energy per unit band volume dissipated when x drops from xOld to xNew.
   double dissipation(double xOld, double xNew) const { return dissipationBetween(law_, xOld, xNew); }
+  // The same with F(xOld) (the loading surface) and F(xNew) (the driving force Y) known.
+  double dissipation(double xOld, double xNew, double fOld, double fNew) const {
+    return dissipationBetween(law_, xOld, xNew, fOld, fNew);
+  }
   double onsetDrivingForce() const { return onsetY_; }  // F(D = 0) = f_t'^2 / (2E)
   const DamageLawParams& law() const { return law_; }
   const Tangent& stiffness() const { return stiffness_; }

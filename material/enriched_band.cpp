@@ -77,22 +77,34 @@ Mat2 EnrichedBand::secantJacobian(const BandState& b, double x) const {
   return n.transpose() * ((f / (1.0 - f) + x) * stiffness()) * n / bandWidth_;  // Eq. (9), a_L = x a
 }
 
-Tangent EnrichedBand::consistentTangent(const BandState& b, const BandEquilibrium& eq) const {
+EnrichedBand::FrozenEquilibrium EnrichedBand::frozenEquilibrium(const BandState& b, const Voigt& strain,
+                                                                 const Vec2& jump) const {
+  const JumpMap n = jumpToStrain(b.crackNormal);
+  const double f = b.volumeFraction;
+  FrozenEquilibrium eq;
+  eq.bandStrain = b.onsetStrain + n * jump / bandWidth_;                               // Eq. (3)
+  eq.stress = stiffness() * (strain - f * eq.bandStrain) / (1.0 - f);                 // Eqs. (2), (4)
+  eq.residual = n.transpose() * (eq.stress - b.integrity * (stiffness() * eq.bandStrain));  // Eqs. (6), (11)
+  return eq;
+}
+
+Tangent EnrichedBand::consistentTangent(const BandState& b, const Mat2& jacobian) const {
   const JumpMap n = jumpToStrain(b.crackNormal);
   const double f = b.volumeFraction;
   const Tangent& a = stiffness();
-  const Eigen::Matrix<double, 2, 3> dJumpdStrain = eq.jacobian.inverse() * n.transpose() * a / (1.0 - f);  // Eq. (8)
+  const Eigen::Matrix<double, 2, 3> dJumpdStrain = jacobian.inverse() * n.transpose() * a / (1.0 - f);  // Eq. (8)
   return a / (1.0 - f) * (Tangent::Identity() - f / bandWidth_ * n * dJumpdStrain);                      // Eq. (10)
 }
 
 UpdateResult EnrichedBand::updateCracked(BandState& b, Voigt& strain, const Voigt& increment,
-                                         SnapBackPolicy policy) const {
-  UpdateResult r = predictCorrect(b, strain, increment);
-  if (r.status == UpdateStatus::SnapBack && policy == SnapBackPolicy::Release) return releaseSnapBack(b, strain, increment);
+                                         UpdateOptions options) const {
+  UpdateResult r = predictCorrect(b, strain, increment, options.tangent);
+  if (r.status == UpdateStatus::SnapBack && options.snapBack == SnapBackPolicy::Release)
+    return releaseSnapBack(b, strain, increment, options.tangent);
   return r;
 }
 
-UpdateResult EnrichedBand::releaseSnapBack(BandState& b, Voigt& strain, const Voigt& increment) const {
+UpdateResult EnrichedBand::releaseSnapBack(BandState& b, Voigt& strain, const Voigt& increment, bool tangent) const {
   const Voigt eps = strain + increment;
   const double f = b.volumeFraction;
   // With the damage frozen at x, Eq. (6) is linear in [u] (secant K of Eq. (9)): [u](x) in one
@@ -146,7 +158,7 @@ UpdateResult EnrichedBand::releaseSnapBack(BandState& b, Voigt& strain, const Vo
     // consistency and stability (K of Eq. (9) positive), or reports this root unstable.
     BandState trial = root.band;
     Voigt s = eps;
-    const UpdateResult r = predictCorrect(trial, s, Voigt::Zero());
+    const UpdateResult r = predictCorrect(trial, s, Voigt::Zero(), tangent);
     const bool isStable = r.converged() && positiveDefinite(equilibrium(trial, law_.envelope(trial.integrity), eps, trial.jump, true).jacobian);
     if (isStable) {
       res = r;
@@ -162,7 +174,7 @@ UpdateResult EnrichedBand::releaseSnapBack(BandState& b, Voigt& strain, const Vo
   return res;
 }
 
-UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voigt& increment) const {
+UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent) const {
   const Voigt eps = strain + increment;
   UpdateResult res;
   // Relative to f_t'; at enormous strains the floor is the round-off of a : eps itself.
@@ -171,26 +183,38 @@ UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voi
 
   // 1. Elastic predictor: with the band's damage frozen, Eq. (6) is linear in [u] and the secant
   //    K of Eq. (9) (a_L = x0 a, always positive definite) solves it in one step. If the band
-  //    stays inside its loading surface, that is the answer (unloading or neutral loading).
-  const Eigen::LLT<Mat2> secantSolver(secantJacobian(b, b.integrity));
-  const BandDamageLaw::LoadingSurface frozen{b.integrity, std::numeric_limits<double>::infinity()};
+  //    stays inside its loading surface, that is the answer (unloading or neutral loading):
+  //    most cracked updates of a structure end here, without the damage law or its tangent.
+  const Mat2 secant = secantJacobian(b, b.integrity);
+  const Eigen::LLT<Mat2> secantSolver(secant);
   Vec2 jump = b.jump;
-  BandEquilibrium eq = equilibrium(b, frozen, eps, jump, false);
-  for (int it = 0; it < 3 && eq.residual.norm() > tol; ++it) {  // 1 step + round-off
-    jump += secantSolver.solve(eq.residual);
-    eq = equilibrium(b, frozen, eps, jump, false);
+  FrozenEquilibrium frozen = frozenEquilibrium(b, eps, jump);
+  for (int it = 0; it < 3 && frozen.residual.norm() > tol; ++it) {  // 1 step + round-off
+    jump += secantSolver.solve(frozen.residual);
+    frozen = frozenEquilibrium(b, eps, jump);
     ++res.iterations;
   }
-  if (eq.band.drivingForce <= surface.threshold) return finishUpdate(b, strain, eps, jump, eq, tol, res);
+  if (drivingForceValue(stiffness() * frozen.bandStrain, law_.compliance()) <= surface.threshold) {
+    res.residual = frozen.residual.norm();
+    res.stress = frozen.stress;
+    if (!(res.residual <= tol)) {
+      res.status = UpdateStatus::NotConverged;
+      return res;
+    }
+    if (tangent) res.tangent = consistentTangent(b, secant);
+    b.jump = jump;
+    strain = eps;
+    return res;
+  }
 
   // 2. Damage corrector: Newton with line search on the monotonic loading envelope, smooth across
   //    the loading surface (MODEL-NOTES pitfall 2: no loading/unloading kink inside the
   //    iteration), from [u]_old with the loading tangent. The root must load the band
   //    (x <= x0) on a stable branch (K of Eq. (9) positive definite); otherwise the loading
   //    branch has turned back under strain control: a snap-back.
-  const BandDamageLaw::LoadingSurface envelope = law_.envelope(b.integrity);
-  jump = b.jump;
-  eq = equilibrium(b, envelope, eps, jump, true);
+  const BandDamageLaw::LoadingSurface envelope = BandDamageLaw::envelope(surface);
+  // Newton starts from the predictor's jump: the root lies a damage increment beyond it.
+  BandEquilibrium eq = equilibrium(b, envelope, eps, jump, true);
   double rn = eq.residual.norm();
   bool sawUnstableBranch = false;
   int it = 0;
@@ -242,11 +266,12 @@ UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voi
       }
     }
   }
-  return finishUpdate(b, strain, eps, jump, eq, tol, res);
+  return finishUpdate(b, strain, eps, jump, eq, surface.threshold, tol, tangent, res);
 }
 
 UpdateResult EnrichedBand::finishUpdate(BandState& b, Voigt& strain, const Voigt& eps, const Vec2& jump,
-                                        const BandEquilibrium& eq, double tol, UpdateResult& res) const {
+                                        const BandEquilibrium& eq, double thresholdOld, double tol, bool tangent,
+                                        UpdateResult& res) const {
   res.residual = eq.residual.norm();
   res.stress = eq.stress;
   if (!(res.residual <= tol)) {
@@ -254,8 +279,9 @@ UpdateResult EnrichedBand::finishUpdate(BandState& b, Voigt& strain, const Voigt
     return res;
   }
   res.status = UpdateStatus::Converged;
-  res.tangent = consistentTangent(b, eq);
-  res.dissipation = b.volumeFraction * law_.dissipation(b.integrity, eq.band.integrity);  // f int Y dD
+  if (tangent) res.tangent = consistentTangent(b, eq);
+  // f int Y dD; on the loading branch F(x_new) = Y
+  res.dissipation = b.volumeFraction * law_.dissipation(b.integrity, eq.band.integrity, thresholdOld, eq.band.drivingForce);
   b.jump = jump;
   b.integrity = eq.band.integrity;
   strain = eps;
@@ -263,7 +289,7 @@ UpdateResult EnrichedBand::finishUpdate(BandState& b, Voigt& strain, const Voigt
 }
 
 UpdateResult EnrichedBand::updateIntactSlow(Voigt& strain, const Voigt& increment, const EffectiveSize& size,
-                                            std::optional<BandState>& onset, SnapBackPolicy policy) const {
+                                            std::optional<BandState>& onset, UpdateOptions options) const {
   UpdateResult r;
   r.stress = stiffness() * (strain + increment);
   r.tangent = stiffness();
@@ -283,7 +309,7 @@ UpdateResult EnrichedBand::updateIntactSlow(Voigt& strain, const Voigt& incremen
   }
   b.volumeFraction = bandWidth_ / effectiveSize;  // Eq. (1)
   Voigt cracked = b.onsetStrain;
-  r = updateCracked(b, cracked, (1.0 - *alpha) * increment, policy);
+  r = updateCracked(b, cracked, (1.0 - *alpha) * increment, options);
   if (r.converged()) {
     strain = cracked;
     onset = b;

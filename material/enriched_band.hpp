@@ -49,6 +49,14 @@ enum class SnapBackPolicy {
   Release,  // the band fails dynamically at the end strain onto its stable branch (explicit MPM)
 };
 
+// What the caller of an update needs besides the stress and the new state.
+struct UpdateOptions {
+  SnapBackPolicy snapBack = SnapBackPolicy::Report;
+  bool tangent = true;  // the consistent tangent of Eq. (10); an explicit solver does not use it
+  UpdateOptions() = default;
+  UpdateOptions(SnapBackPolicy policy, bool withTangent = true) : snapBack(policy), tangent(withTangent) {}  // NOLINT: implicit
+};
+
 class EnrichedBand {
  public:
   explicit EnrichedBand(const EnrichedParams& p);
@@ -60,14 +68,14 @@ class EnrichedBand {
   // Intact point: elastic, or onset inside the increment; then `onset` receives the new band
   // state and the rest of the increment is taken cracked.
   UpdateResult updateIntact(Voigt& strain, const Voigt& strainIncrement, const EffectiveSize& size,
-                            std::optional<BandState>& onset, SnapBackPolicy policy = SnapBackPolicy::Report) const {
+                            std::optional<BandState>& onset, UpdateOptions options = {}) const {
     const Voigt end = strain + strainIncrement;
     const Voigt s = stiffness() * end;
     if (surelyIntact(s)) {
       strain = end;
       return {s, stiffness()};
     }
-    return updateIntactSlow(strain, strainIncrement, size, onset, policy);
+    return updateIntactSlow(strain, strainIncrement, size, onset, options);
   }
   // A cheap sufficient test that the elastic stress s cannot reach onset:
   // Y <= (c11 + |c12|)/2 |sigma|^2 < F(D = 0). Most intact updates stop here, as cheap as elastic
@@ -76,14 +84,14 @@ class EnrichedBand {
     return onsetBound_ * (s[0] * s[0] + s[1] * s[1] + 2.0 * s[2] * s[2]) < law_.onsetDrivingForce();
   }
   UpdateResult updateCracked(BandState& band, Voigt& strain, const Voigt& strainIncrement,
-                             SnapBackPolicy policy = SnapBackPolicy::Report) const;
+                             UpdateOptions options = {}) const;
 
   // Snap-back release: at the end strain of an increment whose loading branch turned back, the
   // band's damage grows at fixed strain until traction continuity (6) holds with consistent
   // damage (Y = F(x)) on a stable branch: the first such state below x0. Converged with
   // `released` set, or SnapBack if none exists. The stored energy released beyond f int Y dD
   // (the point's share of a dynamic snap) is not tracked by the point.
-  UpdateResult releaseSnapBack(BandState& band, Voigt& strain, const Voigt& strainIncrement) const;
+  UpdateResult releaseSnapBack(BandState& band, Voigt& strain, const Voigt& strainIncrement, bool tangent = true) const;
 
   // Pure evaluation of both phases at a trial jump (used by Newton and by opening control).
   BandEquilibrium equilibrium(const BandState& band, const Voigt& strain, const Vec2& jump,
@@ -93,7 +101,10 @@ class EnrichedBand {
   BandEquilibrium equilibrium(const BandState& band, const BandDamageLaw::LoadingSurface& surface,
                               const Voigt& strain, const Vec2& jump, bool loadingTangent) const;
   // Consistent tangent d sigma / d eps at a converged equilibrium, Eq. (10).
-  Tangent consistentTangent(const BandState& band, const BandEquilibrium& eq) const;
+  Tangent consistentTangent(const BandState& band, const BandEquilibrium& eq) const {
+    return consistentTangent(band, eq.jacobian);
+  }
+  Tangent consistentTangent(const BandState& band, const Mat2& jacobian) const;
 
   // Fraction alpha in (0, 1] of the increment at which the onset criterion, Eq. (12) with
   // D = 0, is first met; nullopt if it is not met within the increment.
@@ -119,13 +130,21 @@ class EnrichedBand {
  private:
   // K of Eq. (9) with the band's damage frozen at x (a_L = x a): always positive definite.
   Mat2 secantJacobian(const BandState& b, double x) const;
+  // Eq. (6) with the band's damage frozen at its integrity (a_L = x0 a): linear in [u], so the
+  // elastic predictor needs neither the damage law nor its tangent.
+  struct FrozenEquilibrium {
+    Voigt bandStrain;  // eps_L, Eq. (3)
+    Voigt stress;      // sigma, Eqs. (2), (4)
+    Vec2 residual;     // (sigma - x0 a eps_L) n, Eq. (6)
+  };
+  FrozenEquilibrium frozenEquilibrium(const BandState& b, const Voigt& strain, const Vec2& jump) const;
   // The cracked update proper: elastic predictor, then damage corrector on the envelope.
-  UpdateResult predictCorrect(BandState& b, Voigt& strain, const Voigt& increment) const;
+  UpdateResult predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent) const;
   // Commit a converged equilibrium (tangent Eq. (10), dissipation) or report NotConverged.
   UpdateResult finishUpdate(BandState& b, Voigt& strain, const Voigt& eps, const Vec2& jump, const BandEquilibrium& eq,
-                            double tol, UpdateResult& res) const;
+                            double thresholdOld, double tol, bool tangent, UpdateResult& res) const;
   UpdateResult updateIntactSlow(Voigt& strain, const Voigt& strainIncrement, const EffectiveSize& size,
-                                std::optional<BandState>& onset, SnapBackPolicy policy) const;
+                                std::optional<BandState>& onset, UpdateOptions options) const;
   static constexpr int kMaxReleaseSteps = 2000;     // scan steps of the release, x0 * ratio^k
   static constexpr double kReleaseScanRatio = 0.9;  // (0.9^2000 ~ 1e-92: down to a failed band)
 

@@ -27,9 +27,9 @@ struct Failure {
 
 // One enriched point: the increment in one go, else in 2^level equal sub-steps.
 UpdateResult updateEnriched(const EnrichedBand& m, Voigt& strain, BandState* band, const Voigt& d,
-                            const EffectiveSize& size, std::optional<BandState>& onset, int levels, SnapBackPolicy policy,
+                            const EffectiveSize& size, std::optional<BandState>& onset, int levels, UpdateOptions options,
                             long& retries) {
-  UpdateResult r = band ? m.updateCracked(*band, strain, d, policy) : m.updateIntact(strain, d, size, onset, policy);
+  UpdateResult r = band ? m.updateCracked(*band, strain, d, options) : m.updateIntact(strain, d, size, onset, options);
   if (r.converged()) return r;
   ++retries;
   for (int level = 1; level <= levels; ++level) {
@@ -41,7 +41,7 @@ UpdateResult updateEnriched(const EnrichedBand& m, Voigt& strain, BandState* ban
     double dissipation = 0.0;
     bool ok = true, released = false;
     for (int i = 0; i < n && ok; ++i) {
-      r = b ? m.updateCracked(*b, s, sub, policy) : m.updateIntact(s, sub, size, b, policy);
+      r = b ? m.updateCracked(*b, s, sub, options) : m.updateIntact(s, sub, size, b, options);
       ok = r.converged();
       dissipation += r.dissipation;
       released = released || r.released;
@@ -72,7 +72,7 @@ void Solver::updateStresses() {
   const std::size_t chunks = (count + kChunk - 1) / kChunk;
   std::vector<double> chunkDissipation(chunks, 0.0);
   long retries = 0, released = 0;
-  const SnapBackPolicy policy = scene_.solver.snapBack;
+  const UpdateOptions options{scene_.solver.snapBack, false};  // explicit: no tangent needed
   Failure failure;
   std::vector<std::vector<Onset>> onsets(static_cast<std::size_t>(threads_));
 #pragma omp parallel num_threads(threads_) reduction(+ : retries, released)
@@ -117,7 +117,7 @@ void Solver::updateStresses() {
             std::optional<BandState> onset;
             try {
               r = updateEnriched(*k.enriched, p.strain[i], bi >= 0 ? &p.bands[static_cast<std::size_t>(bi)] : nullptr,
-                                 d, size_, onset, levels, policy, retries);
+                                 d, size_, onset, levels, options, retries);
             } catch (const std::exception& ex) {
               r.status = UpdateStatus::NotConverged;
               what = ex.what();

@@ -1,6 +1,10 @@
 // The band's damage law, Eqs. (11)-(13), driven on its own in uniaxial stress.
 #include "material/band_damage_law.hpp"
 
+#include <random>
+
+#include "material/driving_force.hpp"
+
 #include <gtest/gtest.h>
 
 #include "paper_concrete.hpp"
@@ -85,6 +89,22 @@ TEST(BandDamageLaw, UnloadingIsSecant) {
   EXPECT_EQ(b.integrity, a.integrity);
   EXPECT_TRUE(b.stress.isApprox(0.5 * a.stress, 1e-14));
   EXPECT_TRUE(b.tangent.isApprox(a.integrity * law.stiffness(), 1e-14));
+}
+
+TEST(BandDamageLaw, DrivingForceValueIsBitwiseTheFullEvaluation) {
+  // The elastic predictor of a cracked point decides loading with drivingForceValue (no
+  // principal directions): it must agree bit for bit with drivingForce().value, or a point on
+  // its loading surface could be judged differently by the predictor and the corrector.
+  BandDamageLaw law{test::paperBand()};
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-5.0, 5.0);
+  for (int i = 0; i < 10000; ++i) {
+    Voigt s(u(rng), u(rng), u(rng));
+    if (i % 4 == 1) s[2] = 0.0;   // principal axes along x, y
+    if (i % 4 == 2) s[1] = s[0];  // equal normal stresses
+    if (i % 4 == 3) s = Voigt(-1.0, -2.0, 0.5);  // compression: Y = 0
+    EXPECT_EQ(drivingForceValue(s, law.compliance()), drivingForce(s, law.compliance()).value) << s.transpose();
+  }
 }
 
 }  // namespace

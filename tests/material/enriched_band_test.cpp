@@ -175,5 +175,39 @@ TEST(EnrichedBand, OnsetIsSplitAtTheExactPoint) {
   EXPECT_LE((once.band->crackNormal - twice.band->crackNormal).norm(), 1e-9);
 }
 
+TEST(EnrichedBand, UpdateWithoutTangentGivesTheSameStateAndStress) {
+  // An explicit solver asks for no consistent tangent (UpdateOptions::tangent = false): the
+  // stress, the band state and the dissipation must not depend on that choice, on a path that
+  // loads, unloads (elastic predictor) and reloads the band, in tension and shear.
+  EnrichedBand model(test::paperEnriched());
+  const auto size = EffectiveSize::fixed(2.5);
+  EnrichedState with, without;
+  const Voigt load(4e-6, -5e-7, 2e-6);
+  int unloading = 0, loading = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Voigt d = (i % 50 < 35 ? 1.0 : -1.0) * load;
+    const UpdateResult a = model.update(with, d, size);
+    UpdateResult b;
+    if (without.band) {
+      b = model.updateCracked(*without.band, without.strain, d, UpdateOptions{SnapBackPolicy::Report, false});
+    } else {
+      b = model.updateIntact(without.strain, d, size, without.band, UpdateOptions{SnapBackPolicy::Report, false});
+    }
+    ASSERT_TRUE(a.converged() && b.converged()) << i;
+    EXPECT_EQ(a.stress, b.stress) << i;
+    EXPECT_EQ(a.dissipation, b.dissipation) << i;
+    EXPECT_EQ(with.strain, without.strain) << i;
+    ASSERT_EQ(with.band.has_value(), without.band.has_value());
+    if (with.band) {
+      EXPECT_EQ(with.band->jump, without.band->jump) << i;
+      EXPECT_EQ(with.band->integrity, without.band->integrity) << i;
+      (a.dissipation > 0.0 ? loading : unloading) += 1;
+      EXPECT_EQ(b.tangent, Tangent::Zero()) << "no tangent was asked for";
+    }
+  }
+  EXPECT_GT(loading, 50);    // the path exercises both branches of the update
+  EXPECT_GT(unloading, 20);
+}
+
 }  // namespace
 }  // namespace ecm
