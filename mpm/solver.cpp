@@ -78,8 +78,8 @@ void Solver::advance() {
     case UpdateScheme::USL:
       particleToGrid(kStencils | kMassMomentum | kForces);
       updateGrid();
-      gridToParticle(true);
-      updateStresses();
+      gridToParticle(true, true);  // with the closed-form stresses
+      updateStresses(true);         // the rest
       break;
     case UpdateScheme::MUSL:
       particleToGrid(kStencils | kMassMomentum | kForces);

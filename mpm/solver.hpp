@@ -65,9 +65,13 @@ class Solver {
   void particleToGrid(unsigned transfer);
   void updateGrid();          // v^n = p/m, forces and damping -> v^{n+1}, conditions, reactions
   void gridVelocities();      // v = p/m with the velocity conditions (USF strain, MUSL remap)
-  void gridToParticle(bool withStrainIncrements);  // velocities (PIC/FLIP), positions, optionally strain increments
+  // Velocities (PIC/FLIP), positions and, with strain increments, optionally the stress of every
+  // point whose update is closed-form (elastic, intact far from onset: stress_update.hpp); the
+  // others are listed in deferred_ for updateStresses().
+  void gridToParticle(bool withStrainIncrements, bool fusedStress = false);
   void computeStrainIncrements();  // from the grid velocities
-  void updateStresses();      // the material update of every particle (sub-stepping on failure)
+  // The material update (sub-stepping on failure) of every particle, or of deferred_ only.
+  void updateStresses(bool deferredOnly = false);
 
   // --- state ---
   const Scene& scene() const { return scene_; }
@@ -115,6 +119,8 @@ class Solver {
   std::vector<GridAccumulator> scratch_;  // one per extra thread
   std::vector<Material> materials_;
   std::vector<MaterialKernel> kernels_;
+  std::vector<std::uint32_t> deferred_;  // USL: particles left to updateStresses, in index order
+  std::vector<std::vector<std::uint32_t>> deferredPerThread_;
   std::vector<ConditionState> conditions_;
   std::vector<std::uint8_t> constrained_;  // per node: bit 0 x, bit 1 y is prescribed (no damping there)
   std::vector<LoadState> loads_;

@@ -1,6 +1,7 @@
-// The stress phase: every particle's material update with its strain increment. Elastic points
-// take the closed form inline; enriched points call updateIntact / updateCracked on the side
-// array of band states; failed updates are retried with 2, 4, ... sub-steps.
+// The stress phase: every particle's material update with its strain increment (or, after the
+// fused USL transfer, only the particles it deferred). Elastic and intact points far from onset
+// take the closed form (stress_update.hpp); enriched points call updateIntact / updateCracked on
+// the side array of band states; failed updates are retried with 2, 4, ... sub-steps.
 #include <omp.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <sstream>
 
 #include "mpm/solver.hpp"
+#include "mpm/stress_update.hpp"
 
 namespace ecm::mpm {
 
@@ -61,14 +63,17 @@ UpdateResult updateEnriched(const EnrichedBand& m, Voigt& strain, BandState* ban
 
 }  // namespace
 
-void Solver::updateStresses() {
+void Solver::updateStresses(bool deferredOnly) {
   Particles& p = particles_;
-  const std::size_t count = p.size();
+  // Positions j = 0 .. count - 1 in the list of particles to update (all, or the deferred ones).
+  const std::size_t count = deferredOnly ? deferred_.size() : p.size();
+  const std::uint32_t* list = deferredOnly ? deferred_.data() : nullptr;
   const int levels = scene_.solver.substepLevels;
   // Dissipation summed per chunk in particle order (a local sum, stored once: a shared
   // per-particle accumulator put two threads on one cache line and cost half the step), then
   // over the chunks in order: the same bits for any thread count and schedule.
-  constexpr std::size_t kChunk = 512;
+  // Deferred points are the expensive ones (cracked, near onset): smaller chunks balance them.
+  const std::size_t kChunk = deferredOnly ? 64 : 512;
   const std::size_t chunks = (count + kChunk - 1) / kChunk;
   std::vector<double> chunkDissipation(chunks, 0.0);
   long retries = 0, released = 0;
@@ -84,13 +89,15 @@ void Solver::updateStresses() {
     for (std::size_t c = 0; c < chunks; ++c) {
       double chunkSum = 0.0;
       const std::size_t end = std::min(count, (c + 1) * kChunk);
-      for (std::size_t i = c * kChunk; i < end; ++i) {
+      for (std::size_t j = c * kChunk; j < end; ++j) {
+        const std::size_t i = list ? list[j] : j;
         const MaterialKernel& k = kernels_[p.material[i]];
         const Voigt& d = p.strainIncrement[i];
+        if (closedFormStress(k, d, p.band[i], p.strain[i], p.stress[i])) continue;
         UpdateResult r;
         std::string what;
         switch (k.kind) {
-          case ModelKind::LinearElastic:
+          case ModelKind::LinearElastic:  // a non-finite stress (closedFormStress refused it): reported below
             p.strain[i] += d;
             p.stress[i] = k.stiffness * p.strain[i];
             break;
@@ -105,15 +112,6 @@ void Solver::updateStresses() {
           }
           case ModelKind::Enriched: {
             const std::int32_t bi = p.band[i];
-            if (bi < 0) {  // an intact point far from onset: elastic, no result to build
-              const Voigt end = p.strain[i] + d;
-              const Voigt s = k.stiffness * end;
-              if (k.enriched->surelyIntact(s) && s.allFinite()) {
-                p.strain[i] = end;
-                p.stress[i] = s;
-                break;
-              }
-            }
             std::optional<BandState> onset;
             try {
               r = updateEnriched(*k.enriched, p.strain[i], bi >= 0 ? &p.bands[static_cast<std::size_t>(bi)] : nullptr,

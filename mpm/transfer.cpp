@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "mpm/solver.hpp"
+#include "mpm/stress_update.hpp"
 
 namespace ecm::mpm {
 
@@ -102,9 +103,16 @@ void zero(ScatterTarget t, int nodes, unsigned what) {
   }
 }
 
-template <ShapeFunction F, bool WithStrain>
+// Stress: the closed-form stress update fused in (USL); the points it cannot take are appended
+// to `deferred` with their strain increment stored.
+struct FusedStress {
+  const MaterialKernel* kernels;
+  std::vector<std::uint32_t>* deferred;
+};
+
+template <ShapeFunction F, bool WithStrain, bool Stress>
 std::size_t gather(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, const GridFields& grid, Particles& p,
-                   std::size_t begin, std::size_t end, double dt, double flip) {
+                   std::size_t begin, std::size_t end, double dt, double flip, FusedStress fused) {
   constexpr int S = supportSize(F);
   const int nx = g.nodesX();
   const double pic = 1.0 - flip;
@@ -132,7 +140,17 @@ std::size_t gather(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, co
     vp = flip * (vp + dv) + pic * v;
     p.position[i] += dt * v;
     p.displacement[i] += dt * v;
-    if constexpr (WithStrain) p.strainIncrement[i] = Voigt(dt * lxx, dt * lyy, dt * (lxy + lyx));
+    if constexpr (WithStrain) {
+      const Voigt d(dt * lxx, dt * lyy, dt * (lxy + lyx));
+      if constexpr (Stress) {
+        if (!closedFormStress(fused.kernels[p.material[i]], d, p.band[i], p.strain[i], p.stress[i])) {
+          p.strainIncrement[i] = d;
+          fused.deferred->push_back(static_cast<std::uint32_t>(i));
+        }
+      } else {
+        p.strainIncrement[i] = d;
+      }
+    }
     if (bad == kNone && !(vp.allFinite() && p.position[i].allFinite())) bad = i;
   }
   return bad;
@@ -160,20 +178,21 @@ void strainIncrements(const Grid& g, const Vec2& invCell, const Vec2& halfWidth,
 }
 
 using GatherFn = std::size_t (*)(const Grid&, const Vec2&, const Vec2&, const GridFields&, Particles&, std::size_t,
-                                 std::size_t, double, double);
+                                 std::size_t, double, double, FusedStress);
 using StrainFn = void (*)(const Grid&, const Vec2&, const Vec2&, const GridFields&, Particles&, std::size_t, std::size_t,
                           double);
 
 template <ShapeFunction F>
-GatherFn gatherFor(bool withStrain) {
-  return withStrain ? gather<F, true> : gather<F, false>;
+GatherFn gatherFor(bool withStrain, bool stress) {
+  if (stress) return gather<F, true, true>;
+  return withStrain ? gather<F, true, false> : gather<F, false, false>;
 }
 
-GatherFn gatherFor(ShapeFunction f, bool withStrain) {
+GatherFn gatherFor(ShapeFunction f, bool withStrain, bool stress) {
   switch (f) {
-    case ShapeFunction::Linear: return gatherFor<ShapeFunction::Linear>(withStrain);
-    case ShapeFunction::UGimp: return gatherFor<ShapeFunction::UGimp>(withStrain);
-    case ShapeFunction::BSpline2: return gatherFor<ShapeFunction::BSpline2>(withStrain);
+    case ShapeFunction::Linear: return gatherFor<ShapeFunction::Linear>(withStrain, stress);
+    case ShapeFunction::UGimp: return gatherFor<ShapeFunction::UGimp>(withStrain, stress);
+    case ShapeFunction::BSpline2: return gatherFor<ShapeFunction::BSpline2>(withStrain, stress);
   }
   return nullptr;
 }
@@ -225,18 +244,32 @@ void Solver::particleToGrid(unsigned what) {
   if (what & kForces) addLoads();
 }
 
-void Solver::gridToParticle(bool withStrainIncrements) {
+void Solver::gridToParticle(bool withStrainIncrements, bool fusedStress) {
   const std::size_t count = particles_.size();
-  const GatherFn fn = gatherFor(scene_.solver.shapeFunction, withStrainIncrements);
+  const GatherFn fn = gatherFor(scene_.solver.shapeFunction, withStrainIncrements, fusedStress);
   std::size_t bad = kNone;
+  deferredPerThread_.resize(static_cast<std::size_t>(threads_));
+  int used = 1;
 #pragma omp parallel num_threads(threads_)
   {
-    const auto [b, e] = range(count, omp_get_thread_num(), omp_get_num_threads());
-    const std::size_t mine = fn(scene_.grid, invCell_, halfWidth_, grid_, particles_, b, e, dt_, scene_.solver.flip);
-    if (mine != kNone) {
+    const int t = omp_get_thread_num(), n = omp_get_num_threads();
+#pragma omp single nowait
+    used = n;  // read after the region only
+    std::vector<std::uint32_t>& mine = deferredPerThread_[static_cast<std::size_t>(t)];
+    mine.clear();
+    const auto [b, e] = range(count, t, n);
+    const std::size_t first = fn(scene_.grid, invCell_, halfWidth_, grid_, particles_, b, e, dt_, scene_.solver.flip,
+                                 {kernels_.data(), &mine});
+    if (first != kNone) {
 #pragma omp critical(ecm_mpm_failure)
-      bad = std::min(bad, mine);
+      bad = std::min(bad, first);
     }
+  }
+  if (fusedStress) {  // thread t's range precedes thread t + 1's: the joined list is in index order
+    deferred_.clear();
+    for (int t = 0; t < used; ++t)
+      deferred_.insert(deferred_.end(), deferredPerThread_[static_cast<std::size_t>(t)].begin(),
+                       deferredPerThread_[static_cast<std::size_t>(t)].end());
   }
   if (bad != kNone) {
     std::ostringstream msg;
