@@ -25,7 +25,9 @@ void EnrichedParams::validate() const {
 EnrichedBand::EnrichedBand(const EnrichedParams& p)
     : law_((p.validate(), p.band)),
       bandWidth_(p.bandWidth),
-      onsetBound_(0.5 * (law_.compliance()(0, 0) + std::abs(law_.compliance()(0, 1)))) {}
+      onsetBound_(0.5 * (law_.compliance()(0, 0) + std::abs(law_.compliance()(0, 1)))),
+      shearModulus_(law_.stiffness()(2, 2)),
+      acousticRatio_((law_.stiffness()(0, 1) + law_.stiffness()(2, 2)) / law_.stiffness()(0, 0)) {}
 
 double EnrichedBand::intactDrivingForce(const Voigt& strain) const {
   return drivingForce(stiffness() * strain, law_.compliance()).value;
@@ -75,17 +77,6 @@ Mat2 EnrichedBand::secantJacobian(const BandState& b, double x) const {
   const JumpMap n = jumpToStrain(b.crackNormal);
   const double f = b.volumeFraction;
   return n.transpose() * ((f / (1.0 - f) + x) * stiffness()) * n / bandWidth_;  // Eq. (9), a_L = x a
-}
-
-EnrichedBand::FrozenEquilibrium EnrichedBand::frozenEquilibrium(const BandState& b, const Voigt& strain,
-                                                                 const Vec2& jump) const {
-  const JumpMap n = jumpToStrain(b.crackNormal);
-  const double f = b.volumeFraction;
-  FrozenEquilibrium eq;
-  eq.bandStrain = b.onsetStrain + n * jump / bandWidth_;                               // Eq. (3)
-  eq.stress = stiffness() * (strain - f * eq.bandStrain) / (1.0 - f);                 // Eqs. (2), (4)
-  eq.residual = n.transpose() * (eq.stress - b.integrity * (stiffness() * eq.bandStrain));  // Eqs. (6), (11)
-  return eq;
 }
 
 Tangent EnrichedBand::consistentTangent(const BandState& b, const Mat2& jacobian) const {
@@ -179,29 +170,38 @@ UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voi
   UpdateResult res;
   // Relative to f_t'; at enormous strains the floor is the round-off of a : eps itself.
   const double tol = kRelativeTolerance * tensileStrength() + kRoundOff * (stiffness() * eps).norm();
-  const BandDamageLaw::LoadingSurface surface = law_.loadingSurface(b.integrity);
 
   // 1. Elastic predictor: with the band's damage frozen, Eq. (6) is linear in [u] and the secant
   //    K of Eq. (9) (a_L = x0 a, always positive definite) solves it in one step. If the band
   //    stays inside its loading surface, that is the answer (unloading or neutral loading):
   //    most cracked updates of a structure end here, without the damage law or its tangent.
-  const Mat2 secant = secantJacobian(b, b.integrity);
-  const Eigen::LLT<Mat2> secantSolver(secant);
+  const JumpMap n = jumpToStrain(b.crackNormal);
+  const double f = b.volumeFraction, x0 = b.integrity;
+  const Voigt aEps = stiffness() * eps;
   Vec2 jump = b.jump;
-  FrozenEquilibrium frozen = frozenEquilibrium(b, eps, jump);
-  for (int it = 0; it < 3 && frozen.residual.norm() > tol; ++it) {  // 1 step + round-off
-    jump += secantSolver.solve(frozen.residual);
-    frozen = frozenEquilibrium(b, eps, jump);
+  Voigt aBand = stiffness() * (b.onsetStrain + n * jump / bandWidth_);            // a eps_L, Eq. (3)
+  const auto stressOf = [&](const Voigt& aL) -> Voigt { return (aEps - f * aL) / (1.0 - f); };  // Eqs. (2), (4)
+  Vec2 residual = n.transpose() * (stressOf(aBand) - x0 * aBand);                  // Eqs. (6), (11)
+  for (int it = 0; it < 3 && residual.norm() > tol; ++it) {  // 1 step + round-off
+    jump += secantSolve(b, x0, residual);
+    aBand = stiffness() * (b.onsetStrain + n * jump / bandWidth_);
+    residual = n.transpose() * (stressOf(aBand) - x0 * aBand);
     ++res.iterations;
   }
-  if (drivingForceValue(stiffness() * frozen.bandStrain, law_.compliance()) <= surface.threshold) {
-    res.residual = frozen.residual.norm();
-    res.stress = frozen.stress;
+  // The loading surface F(x0) >= F(1): a band whose Y is below onset (a closed or barely open
+  // crack) is unloading without evaluating F (a pow).
+  const double y = drivingForceValue(aBand, law_.compliance());
+  const bool belowOnset = y <= law_.onsetDrivingForce();
+  const BandDamageLaw::LoadingSurface surface =
+      belowOnset ? BandDamageLaw::LoadingSurface{x0, law_.onsetDrivingForce()} : law_.loadingSurface(x0);
+  if (y <= surface.threshold) {
+    res.residual = residual.norm();
+    res.stress = stressOf(aBand);
     if (!(res.residual <= tol)) {
       res.status = UpdateStatus::NotConverged;
       return res;
     }
-    if (tangent) res.tangent = consistentTangent(b, secant);
+    if (tangent) res.tangent = consistentTangent(b, secantJacobian(b, x0));
     b.jump = jump;
     strain = eps;
     return res;

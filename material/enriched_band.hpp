@@ -117,6 +117,15 @@ class EnrichedBand {
   double bandWidth() const { return bandWidth_; }
   double tensileStrength() const { return law_.law().tensileStrength; }
 
+  // K of Eq. (9) with the band's damage frozen at x (a_L = x a): always positive definite.
+  Mat2 secantJacobian(const BandState& b, double x) const;
+  // The solve with the secant K of Eq. (9) in closed form: n^T a n = mu I + (lambda + mu) n n^T
+  // for the isotropic a, so K^-1 r = h / (f / (1 - f) + x) / mu [r - (lambda + mu) / (lambda + 2 mu) n (n . r)].
+  Vec2 secantSolve(const BandState& b, double x, const Vec2& r) const {
+    const double c = bandWidth_ / ((b.volumeFraction / (1.0 - b.volumeFraction) + x) * shearModulus_);
+    return c * (r - acousticRatio_ * b.crackNormal.dot(r) * b.crackNormal);
+  }
+
   static constexpr int kMaxIterations = 60;
   static constexpr double kRelativeTolerance = 1e-10;  // |residual| <= this * f_t' + kRoundOff |a eps|
   static constexpr double kRoundOff = 1e-13;
@@ -128,16 +137,6 @@ class EnrichedBand {
   static constexpr double kNeutralLoading = 1e-8;
 
  private:
-  // K of Eq. (9) with the band's damage frozen at x (a_L = x a): always positive definite.
-  Mat2 secantJacobian(const BandState& b, double x) const;
-  // Eq. (6) with the band's damage frozen at its integrity (a_L = x0 a): linear in [u], so the
-  // elastic predictor needs neither the damage law nor its tangent.
-  struct FrozenEquilibrium {
-    Voigt bandStrain;  // eps_L, Eq. (3)
-    Voigt stress;      // sigma, Eqs. (2), (4)
-    Vec2 residual;     // (sigma - x0 a eps_L) n, Eq. (6)
-  };
-  FrozenEquilibrium frozenEquilibrium(const BandState& b, const Voigt& strain, const Vec2& jump) const;
   // The cracked update proper: elastic predictor, then damage corrector on the envelope.
   UpdateResult predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent) const;
   // Commit a converged equilibrium (tangent Eq. (10), dissipation) or report NotConverged.
@@ -151,6 +150,8 @@ class EnrichedBand {
   BandDamageLaw law_;
   double bandWidth_;
   double onsetBound_;  // (c11 + |c12|)/2: Y <= onsetBound_ |sigma|^2, a cheap no-onset test
+  double shearModulus_;   // mu = a_33 (in-plane isotropic a: a_11 = lambda + 2 mu, a_12 = lambda)
+  double acousticRatio_;  // (lambda + mu) / (lambda + 2 mu)
 };
 
 }  // namespace ecm

@@ -175,6 +175,27 @@ TEST(EnrichedBand, OnsetIsSplitAtTheExactPoint) {
   EXPECT_LE((once.band->crackNormal - twice.band->crackNormal).norm(), 1e-9);
 }
 
+TEST(EnrichedBand, ClosedFormSecantSolveInvertsTheSecantJacobian) {
+  // secantSolve (the elastic predictor's solve, n^T a n = mu I + (lambda + mu) n n^T for an
+  // isotropic a) must be the inverse of K of Eq. (9) with a_L = x a, for any normal, f and x,
+  // in plane stress and plane strain.
+  for (const Hypothesis hyp : {Hypothesis::PlaneStress, Hypothesis::PlaneStrain}) {
+    const EnrichedBand model(test::paperEnriched(0.2, hyp));
+    for (const double angle : {0.0, 0.3, 1.2, 2.9}) {
+      for (const double f : {1e-6, 0.02, 0.5, 0.999}) {
+        for (const double x : {1.0, 0.4, 1e-9}) {
+          BandState b;
+          b.crackNormal = Vec2(std::cos(angle), std::sin(angle));
+          b.volumeFraction = f;
+          const Vec2 r(0.7, -1.3);
+          const Vec2 back = model.secantJacobian(b, x) * model.secantSolve(b, x, r);
+          EXPECT_LE((back - r).norm(), 1e-12 * r.norm()) << angle << " " << f << " " << x;
+        }
+      }
+    }
+  }
+}
+
 TEST(EnrichedBand, UpdateWithoutTangentGivesTheSameStateAndStress) {
   // An explicit solver asks for no consistent tangent (UpdateOptions::tangent = false): the
   // stress, the band state and the dissipation must not depend on that choice, on a path that
