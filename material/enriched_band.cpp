@@ -30,7 +30,7 @@ EnrichedBand::EnrichedBand(const EnrichedParams& p)
       acousticRatio_((law_.stiffness()(0, 1) + law_.stiffness()(2, 2)) / law_.stiffness()(0, 0)) {}
 
 double EnrichedBand::intactDrivingForce(const Voigt& strain) const {
-  return drivingForce(stiffness() * strain, law_.compliance()).value;
+  return drivingForceValue(stiffness() * strain, law_.compliance());  // bitwise drivingForce().value
 }
 
 std::optional<double> EnrichedBand::onsetFraction(const Voigt& strain, const Voigt& increment) const {

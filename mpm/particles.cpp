@@ -1,5 +1,7 @@
 #include "mpm/particles.hpp"
 
+#include <utility>
+
 namespace ecm::mpm {
 
 void Particles::resize(std::size_t n, bool withIntegrity) {
@@ -22,6 +24,27 @@ std::size_t Particles::bytesPerParticle() const {
                   sizeof(std::int32_t) + sizeof(StencilAt);
   if (!integrity.empty()) b += sizeof(double);
   return b;
+}
+
+bool Particles::bandsInParticleOrder() const {
+  std::int32_t last = -1;
+  for (const std::int32_t b : band) {
+    if (b < 0) continue;
+    if (b != last + 1) return false;
+    last = b;
+  }
+  return true;
+}
+
+void Particles::sortBandsByParticle() {
+  std::vector<BandState> sorted;
+  sorted.reserve(bands.size());
+  for (std::int32_t& b : band) {
+    if (b < 0) continue;
+    sorted.push_back(bands[static_cast<std::size_t>(b)]);
+    b = static_cast<std::int32_t>(sorted.size() - 1);
+  }
+  bands = std::move(sorted);
 }
 
 }  // namespace ecm::mpm

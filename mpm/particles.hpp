@@ -33,6 +33,12 @@ struct Particles {
   std::size_t size() const { return position.size(); }
   void resize(std::size_t n, bool withIntegrity);
 
+  // Bands are appended in the order points crack; the stress update reads them in particle
+  // order. Stored in particle order, that read is sequential instead of scattered (the cracked
+  // update waits on memory otherwise). Reordering changes no value, only where a band is stored.
+  bool bandsInParticleOrder() const;
+  void sortBandsByParticle();
+
   // Memory per particle of the arrays above (bytes), intact and cracked.
   std::size_t bytesPerParticle() const;
   static constexpr std::size_t bytesPerBand() { return sizeof(BandState); }  // added when a point cracks

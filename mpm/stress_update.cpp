@@ -149,6 +149,9 @@ void Solver::updateStresses(bool deferredOnly) {
     p.band[o.particle] = static_cast<std::int32_t>(p.bands.size());
     p.bands.push_back(o.band);
   }
+  // Every 64 steps the bands go back into particle order (decided from the state and the step
+  // alone, so a restarted run stores them exactly as an uninterrupted one).
+  if ((step_ + 1) % 64 == 0 && !p.bandsInParticleOrder()) p.sortBandsByParticle();
   double dissipated = 0.0;
   for (const double d : chunkDissipation) dissipated += d;
   dissipated_ += dissipated;
