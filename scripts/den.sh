@@ -224,7 +224,8 @@ for fam in enriched smeared crackband; do
 done
 
 # Rate check: the change of the peak load and of the dissipated energy per halving of the loading
-# rate (coarse 22.2 mm/s -> halfrate 11.1 -> quarterrate 5.55), relative to the slower run.
+# rate (coarse -> halfrate -> quarterrate: the tension time line stretched 1, 2 and 4 times; through
+# the peak 11.1, 5.55 and 2.78 mm/s), relative to the slower run.
 rates=()
 # Only neighbours in the sequence are compared (a missing halfrate run leaves no coarse-to-quarter pair).
 prev=""
