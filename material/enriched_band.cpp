@@ -90,9 +90,14 @@ Tangent EnrichedBand::consistentTangent(const BandState& b, const Mat2& jacobian
 UpdateResult EnrichedBand::updateCracked(BandState& b, Voigt& strain, const Voigt& increment,
                                          UpdateOptions options) const {
   UpdateResult r = predictCorrect(b, strain, increment, options.tangent);
-  if (r.status == UpdateStatus::SnapBack && options.snapBack == SnapBackPolicy::Release)
-    return releaseSnapBack(b, strain, increment, options.tangent);
-  return r;
+  if (r.converged() || options.snapBack != SnapBackPolicy::Release) return r;
+  if (r.status == UpdateStatus::SnapBack) return releaseSnapBack(b, strain, increment, options.tangent);
+  // Newton on the envelope can stall without meeting an unstable state it could name: where the
+  // nearest consistent state lies a damage jump away (a nearly intact band, Y with the kink of
+  // Eq. (12) as a principal stress crosses zero). The release's scan in x finds that state; if
+  // it finds none, the stall is reported as it was.
+  const UpdateResult released = releaseSnapBack(b, strain, increment, options.tangent);
+  return released.converged() ? released : r;
 }
 
 UpdateResult EnrichedBand::releaseSnapBack(BandState& b, Voigt& strain, const Voigt& increment, bool tangent) const {
@@ -168,8 +173,9 @@ UpdateResult EnrichedBand::releaseSnapBack(BandState& b, Voigt& strain, const Vo
 UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent) const {
   const Voigt eps = strain + increment;
   UpdateResult res;
+  const Voigt aEps = stiffness() * eps;
   // Relative to f_t'; at enormous strains the floor is the round-off of a : eps itself.
-  const double tol = kRelativeTolerance * tensileStrength() + kRoundOff * (stiffness() * eps).norm();
+  const double tol = kRelativeTolerance * tensileStrength() + kRoundOff * aEps.norm();
 
   // 1. Elastic predictor: with the band's damage frozen, Eq. (6) is linear in [u] and the secant
   //    K of Eq. (9) (a_L = x0 a, always positive definite) solves it in one step. If the band
@@ -177,7 +183,6 @@ UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voi
   //    most cracked updates of a structure end here, without the damage law or its tangent.
   const JumpMap n = jumpToStrain(b.crackNormal);
   const double f = b.volumeFraction, x0 = b.integrity;
-  const Voigt aEps = stiffness() * eps;
   Vec2 jump = b.jump;
   Voigt aBand = stiffness() * (b.onsetStrain + n * jump / bandWidth_);            // a eps_L, Eq. (3)
   const auto stressOf = [&](const Voigt& aL) -> Voigt { return (aEps - f * aL) / (1.0 - f); };  // Eqs. (2), (4)

@@ -127,11 +127,13 @@ void writeCheckpoint(const std::filesystem::path& path, const Solver& solver, co
   }
   e.count(s.appliedLoads.size());
   e.array(s.appliedLoads);
+  e.count(s.deferred.size());
+  e.array(s.deferred);
 
   const Particles& p = solver.particles();
   e.count(p.size());
   e.array(p.position);
-  e.array(p.displacement);
+  e.array(p.origin);
   e.array(p.velocity);
   e.array(p.mass);
   e.array(p.volume);
@@ -228,6 +230,7 @@ RunBookkeeping readCheckpoint(const std::filesystem::path& path, Solver& solver,
     d.get(s.conditionDisplacements[i]);
   }
   d.array(s.appliedLoads, d.count(2 * sizeof(double)));
+  d.array(s.deferred, d.count(sizeof(std::uint32_t)));
   if (conditions != solver.conditions().size() || s.appliedLoads.size() != solver.loads().size())
     refuse("it has " + std::to_string(conditions) + " conditions and " + std::to_string(s.appliedLoads.size()) +
            " loads, the scene " + std::to_string(solver.conditions().size()) + " and " +
@@ -243,7 +246,7 @@ RunBookkeeping readCheckpoint(const std::filesystem::path& path, Solver& solver,
   if (n != p.size())
     refuse("it has " + std::to_string(n) + " particles, the scene " + std::to_string(p.size()));
   d.array(p.position, n);
-  d.array(p.displacement, n);
+  d.array(p.origin, n);
   d.array(p.velocity, n);
   d.array(p.mass, n);
   d.array(p.volume, n);

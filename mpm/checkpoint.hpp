@@ -31,7 +31,7 @@
 
 namespace ecm::mpm {
 
-inline constexpr std::uint32_t kCheckpointVersion = 1;
+inline constexpr std::uint32_t kCheckpointVersion = 2;  // 2: the USL deferred list
 
 // A checkpoint that cannot be used: missing, truncated, corrupted, foreign, of another format
 // version, or written for another scene. The message names the file and says why.

@@ -6,7 +6,7 @@ namespace ecm::mpm {
 
 void Particles::resize(std::size_t n, bool withIntegrity) {
   position.resize(n, Vec2::Zero());
-  displacement.resize(n, Vec2::Zero());
+  origin.resize(n, Vec2::Zero());
   velocity.resize(n, Vec2::Zero());
   mass.resize(n, 0.0);
   volume.resize(n, 0.0);

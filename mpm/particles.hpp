@@ -13,7 +13,8 @@ namespace ecm::mpm {
 
 struct Particles {
   std::vector<Vec2> position;        // mm
-  std::vector<Vec2> displacement;    // mm, since the start
+  std::vector<Vec2> origin;          // mm, where the point was seeded (displacement = position - origin:
+                                     // not stored, one array less to stream through every step)
   std::vector<Vec2> velocity;        // mm/s
   std::vector<double> mass;          // t
   std::vector<double> volume;        // mm^3 (initial; small strain)
@@ -31,6 +32,7 @@ struct Particles {
   std::vector<BandState> bands;      // side array: one per cracked enriched point
 
   std::size_t size() const { return position.size(); }
+  Vec2 displacement(std::size_t i) const { return position[i] - origin[i]; }  // mm, since the start
   void resize(std::size_t n, bool withIntegrity);
 
   // Bands are appended in the order points crack; the stress update reads them in particle

@@ -56,6 +56,7 @@ Particles seedParticles(const Scene& scene) {
       throw std::invalid_argument(msg.str());
     }
     p.position[n] = x;
+    p.origin[n] = x;
     p.velocity[n] = body.initialVelocity;
     p.volume[n] = volume;
     p.mass[n] = scene.materials[static_cast<std::size_t>(body.material)].density * volume;

@@ -24,6 +24,7 @@ Solver::Solver(Scene scene, int threads)
   grid_.resize(g.nodeCount());
   scratch_.resize(static_cast<std::size_t>(threads_ - 1));
   for (auto& s : scratch_) s.resize(g.nodeCount());
+  touched_.assign(scratch_.size(), {0, g.nodeCount()});
 
   materials_.reserve(scene_.materials.size());  // kernels_ point into materials_: no reallocation after this
   for (const auto& m : scene_.materials) materials_.emplace_back(m);
@@ -75,11 +76,13 @@ void Solver::advance() {
       updateGrid();
       gridToParticle(false);
       break;
-    case UpdateScheme::USL:
-      particleToGrid(kStencils | kMassMomentum | kForces);
+    case UpdateScheme::USL:  // in one pass over the particles (fused_transfer.cpp)
+      if (!gridHoldsState_) scatterState();  // first step, restart, or particles changed
+      addLoads();
       updateGrid();
-      gridToParticle(true, true);  // with the closed-form stresses
-      updateStresses(true);         // the rest
+      gatherStressScatter();  // with the closed-form stresses and the next step's scatter
+      updateStresses(true);   // the deferred points
+      scatterDeferred();
       break;
     case UpdateScheme::MUSL:
       particleToGrid(kStencils | kMassMomentum | kForces);
@@ -105,7 +108,7 @@ Energies Solver::energies() const {
 }
 
 Solver::StepState Solver::stepState() const {
-  StepState s{time_, dt_, step_, externalWork_, dissipated_, damping_, substepped_, released_, {}, {}, {}};
+  StepState s{time_, dt_, step_, externalWork_, dissipated_, damping_, substepped_, released_, {}, {}, {}, deferred_};
   for (const auto& c : conditions_) {
     s.reactions.push_back(c.reaction);
     s.conditionDisplacements.push_back(c.displacement);
@@ -133,6 +136,12 @@ void Solver::restoreStepState(const StepState& s) {
     conditions_[i].displacement = s.conditionDisplacements[i];
   }
   for (std::size_t i = 0; i < loads_.size(); ++i) loads_[i].applied = s.appliedLoads[i];
+  if (!std::is_sorted(s.deferred.begin(), s.deferred.end()) ||
+      (!s.deferred.empty() && s.deferred.back() >= particles_.size()))
+    throw std::invalid_argument("the deferred particle list is not sorted or names a particle beyond " +
+                                std::to_string(particles_.size()));
+  deferred_ = s.deferred;
+  gridHoldsState_ = false;
 }
 
 double Solver::damage(std::size_t i) const {

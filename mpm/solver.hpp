@@ -12,6 +12,10 @@
 
 namespace ecm::mpm {
 
+namespace detail {
+struct ScatterTarget;  // mpm/transfer_kernels.hpp
+}
+
 // What particle-to-grid scatters (bit flags).
 enum Transfer : unsigned {
   kStencils = 1u,      // locate the particles' stencils (Particles::stencilAt) at their positions first;
@@ -75,7 +79,11 @@ class Solver {
 
   // --- state ---
   const Scene& scene() const { return scene_; }
-  Particles& particles() { return particles_; }
+  // Writable particles: the grid no longer holds their scatter (USL rebuilds it next step).
+  Particles& particles() {
+    gridHoldsState_ = false;
+    return particles_;
+  }
   const Particles& particles() const { return particles_; }
   const GridFields& grid() const { return grid_; }
   const std::vector<ConditionState>& conditions() const { return conditions_; }
@@ -101,6 +109,7 @@ class Solver {
     long substepped = 0, released = 0;
     std::vector<Vec2> reactions, conditionDisplacements;  // per condition
     std::vector<Vec2> appliedLoads;                       // per load
+    std::vector<std::uint32_t> deferred;                  // USL: the last step's deferred points (fused_transfer.cpp)
   };
   StepState stepState() const;
   // Throws std::invalid_argument when the condition or load counts differ from the scene's.
@@ -128,9 +137,25 @@ class Solver {
   long substepped_ = 0;
   long released_ = 0;
 
+  // USL fused (fused_transfer.cpp): the grid holds the scatter of the present particles
+  // (their mass, momentum and forces, loads not yet added), or is waiting for the deferred points.
+  bool gridHoldsState_ = false, gridPending_ = false;
+  void scatterState();         // rebuild the scatter of the present particles, in the fused order
+  void gatherStressScatter();  // G2P, closed-form stresses and the next step's scatter in one pass
+  void scatterDeferred();      // the deferred points' scatter, after updateStresses; sums the parts
+  detail::ScatterTarget part(int t);  // scatter buffer of part t: the grid (0) or scratch_[t - 1]
+  void sumScatterBuffers(unsigned what, int parts);
+  // Fused USL: the scatter buffers summed only over the nodes their part touched (a part's
+  // particles are contiguous in the seeding order, so a band of the grid), which are also the
+  // only nodes the next step has to zero.
+  std::vector<std::pair<int, int>> spans_;         // per part: lowest, highest stencil base of this step
+  std::vector<std::pair<int, int>> touched_;       // per scratch buffer: nodes [lo, hi) not zero
+  void sumTouchedNodes();
+
   void applyVelocityConditions(bool reactions);
   void addLoads();
   [[noreturn]] void throwLeftGrid(std::size_t p) const;
+  [[noreturn]] void throwNotFinite(std::size_t p) const;
 };
 
 }  // namespace ecm::mpm

@@ -64,6 +64,7 @@ UpdateResult updateEnriched(const EnrichedBand& m, Voigt& strain, BandState* ban
 }  // namespace
 
 void Solver::updateStresses(bool deferredOnly) {
+  if (!deferredOnly) gridHoldsState_ = false;  // every stress may change (the deferred ones scatter after)
   Particles& p = particles_;
   // Positions j = 0 .. count - 1 in the list of particles to update (all, or the deferred ones).
   const std::size_t count = deferredOnly ? deferred_.size() : p.size();
@@ -93,7 +94,8 @@ void Solver::updateStresses(bool deferredOnly) {
         const std::size_t i = list ? list[j] : j;
         const MaterialKernel& k = kernels_[p.material[i]];
         const Voigt& d = p.strainIncrement[i];
-        if (closedFormStress(k, d, p.band[i], p.strain[i], p.stress[i])) continue;
+        // (the fused USL pass has tried the closed form on its deferred points already)
+        if (!deferredOnly && closedFormStress(k, d, p.band[i], p.strain[i], p.stress[i])) continue;
         UpdateResult r;
         std::string what;
         switch (k.kind) {

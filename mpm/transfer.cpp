@@ -10,30 +10,18 @@
 
 #include "mpm/solver.hpp"
 #include "mpm/stress_update.hpp"
+#include "mpm/transfer_kernels.hpp"
 
 namespace ecm::mpm {
 
 namespace {
 
-struct ScatterTarget {
-  double* mass;
-  Vec2* momentum;
-  Vec2* force;
-  Vec2* externalForce;
-};
-
-constexpr std::size_t kNone = std::numeric_limits<std::size_t>::max();
-
-// The particle range of thread t of n (a fixed partition, independent of scheduling).
-std::pair<std::size_t, std::size_t> range(std::size_t count, int t, int n) {
-  return {count * static_cast<std::size_t>(t) / static_cast<std::size_t>(n),
-          count * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(n)};
-}
+using detail::kNoParticle;
+using detail::ScatterTarget;
 
 template <ShapeFunction F, bool Stencils, bool MassMomentum, bool Forces>
 std::size_t scatter(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, Particles& p, std::size_t begin,
                     std::size_t end, const Vec2& gravity, ScatterTarget out) {
-  constexpr int S = supportSize(F);
   const int nx = g.nodesX();
   const bool withGravity = Forces && (gravity[0] != 0.0 || gravity[1] != 0.0);
   for (std::size_t i = begin; i < end; ++i) {
@@ -41,30 +29,9 @@ std::size_t scatter(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, P
       if (!locateStencil<F>(g, invCell, halfWidth, p.position[i], p.stencilAt[i])) return i;
     Stencil s;
     expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
-    const double m = p.mass[i];
-    const Vec2 mv = m * p.velocity[i];
-    const double v = p.volume[i];
-    const Voigt& sig = p.stress[i];
-    const double sxx = v * sig[0], syy = v * sig[1], sxy = v * sig[2];
-    const Vec2 mg = m * gravity;
-    for (int j = 0; j < S; ++j) {
-      const int row = s.base + j * nx;
-      for (int k = 0; k < S; ++k) {
-        const int n = row + k;
-        const double w = s.wx[k] * s.wy[j];
-        if constexpr (MassMomentum) {
-          out.mass[n] += w * m;
-          out.momentum[n] += w * mv;
-        }
-        if constexpr (Forces) {
-          const double gx = s.gx[k] * s.wy[j], gy = s.wx[k] * s.gy[j];
-          out.force[n] -= Vec2(sxx * gx + sxy * gy, sxy * gx + syy * gy);
-          if (withGravity) out.externalForce[n] += w * mg;
-        }
-      }
-    }
+    detail::scatterParticle<F, MassMomentum, Forces>(s, nx, p, i, gravity, withGravity, out);
   }
-  return kNone;
+  return kNoParticle;
 }
 
 using ScatterFn = std::size_t (*)(const Grid&, const Vec2&, const Vec2&, Particles&, std::size_t, std::size_t,
@@ -91,18 +58,6 @@ ScatterFn scatterFor(ShapeFunction f, unsigned what) {
   return nullptr;
 }
 
-void zero(ScatterTarget t, int nodes, unsigned what) {
-  const auto n = static_cast<std::size_t>(nodes);
-  if (what & kMassMomentum) {
-    std::fill(t.mass, t.mass + n, 0.0);
-    std::fill(t.momentum, t.momentum + n, Vec2::Zero());
-  }
-  if (what & kForces) {
-    std::fill(t.force, t.force + n, Vec2::Zero());
-    std::fill(t.externalForce, t.externalForce + n, Vec2::Zero());
-  }
-}
-
 // Stress: the closed-form stress update fused in (USL); the points it cannot take are appended
 // to `deferred` with their strain increment stored.
 struct FusedStress {
@@ -113,35 +68,18 @@ struct FusedStress {
 template <ShapeFunction F, bool WithStrain, bool Stress>
 std::size_t gather(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, const GridFields& grid, Particles& p,
                    std::size_t begin, std::size_t end, double dt, double flip, FusedStress fused) {
-  constexpr int S = supportSize(F);
   const int nx = g.nodesX();
   const double pic = 1.0 - flip;
-  std::size_t bad = kNone;
+  std::size_t bad = kNoParticle;
   for (std::size_t i = begin; i < end; ++i) {
     Stencil s;
     expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
-    Vec2 v = Vec2::Zero(), dv = Vec2::Zero();
-    double lxx = 0.0, lxy = 0.0, lyx = 0.0, lyy = 0.0;
-    for (int j = 0; j < S; ++j) {
-      const int row = s.base + j * nx;
-      for (int k = 0; k < S; ++k) {
-        const int n = row + k;
-        const double w = s.wx[k] * s.wy[j];
-        const Vec2& vn = grid.velocity[static_cast<std::size_t>(n)];
-        v += w * vn;
-        dv += w * grid.velocityChange[static_cast<std::size_t>(n)];
-        if constexpr (WithStrain) {
-          const double gx = s.gx[k] * s.wy[j], gy = s.wx[k] * s.gy[j];
-          lxx += vn[0] * gx, lxy += vn[0] * gy, lyx += vn[1] * gx, lyy += vn[1] * gy;
-        }
-      }
-    }
+    const detail::Gathered at = detail::gatherParticle<F, WithStrain>(s, nx, grid);
     Vec2& vp = p.velocity[i];
-    vp = flip * (vp + dv) + pic * v;
-    p.position[i] += dt * v;
-    p.displacement[i] += dt * v;
+    vp = flip * (vp + at.velocityChange) + pic * at.velocity;
+    p.position[i] += dt * at.velocity;
     if constexpr (WithStrain) {
-      const Voigt d(dt * lxx, dt * lyy, dt * (lxy + lyx));
+      const Voigt d = detail::strainIncrement(at, dt);
       if constexpr (Stress) {
         if (!closedFormStress(fused.kernels[p.material[i]], d, p.band[i], p.strain[i], p.stress[i])) {
           p.strainIncrement[i] = d;
@@ -151,7 +89,7 @@ std::size_t gather(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, co
         p.strainIncrement[i] = d;
       }
     }
-    if (bad == kNone && !(vp.allFinite() && p.position[i].allFinite())) bad = i;
+    if (bad == kNoParticle && !(vp.allFinite() && p.position[i].allFinite())) bad = i;
   }
   return bad;
 }
@@ -159,21 +97,11 @@ std::size_t gather(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, co
 template <ShapeFunction F>
 void strainIncrements(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, const GridFields& grid, Particles& p,
                       std::size_t begin, std::size_t end, double dt) {
-  constexpr int S = supportSize(F);
   const int nx = g.nodesX();
   for (std::size_t i = begin; i < end; ++i) {
     Stencil s;
     expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
-    double lxx = 0.0, lxy = 0.0, lyx = 0.0, lyy = 0.0;
-    for (int j = 0; j < S; ++j) {
-      const int row = s.base + j * nx;
-      for (int k = 0; k < S; ++k) {
-        const Vec2& vn = grid.velocity[static_cast<std::size_t>(row + k)];
-        const double gx = s.gx[k] * s.wy[j], gy = s.wx[k] * s.gy[j];
-        lxx += vn[0] * gx, lxy += vn[0] * gy, lyx += vn[1] * gx, lyy += vn[1] * gy;
-      }
-    }
-    p.strainIncrement[i] = Voigt(dt * lxx, dt * lyy, dt * (lxy + lyx));
+    p.strainIncrement[i] = detail::strainIncrement(detail::gatherParticle<F, true>(s, nx, grid), dt);
   }
 }
 
@@ -199,55 +127,42 @@ GatherFn gatherFor(ShapeFunction f, bool withStrain, bool stress) {
 
 }  // namespace
 
+ScatterTarget Solver::part(int t) {
+  return t == 0 ? detail::targetOf(grid_) : detail::targetOf(scratch_[static_cast<std::size_t>(t - 1)]);
+}
+
 void Solver::particleToGrid(unsigned what) {
+  gridHoldsState_ = false;
   const ScatterFn fn = scatterFor(scene_.solver.shapeFunction, what);
   const int nodes = scene_.grid.nodeCount();
   const std::size_t count = particles_.size();
-  std::size_t bad = kNone;
+  std::size_t bad = kNoParticle;
   int used = 1;
 #pragma omp parallel num_threads(threads_)
   {
     const int t = omp_get_thread_num(), n = omp_get_num_threads();
 #pragma omp single
     used = n;
-    ScatterTarget target{grid_.mass.data(), grid_.momentum.data(), grid_.force.data(), grid_.externalForce.data()};
-    if (t > 0) {
-      GridAccumulator& a = scratch_[static_cast<std::size_t>(t - 1)];
-      target = {a.mass.data(), a.momentum.data(), a.force.data(), a.externalForce.data()};
-    }
-    zero(target, nodes, what);
-    const auto [b, e] = range(count, t, n);
+    const ScatterTarget target = part(t);
+    detail::zeroTarget(target, nodes, what & kMassMomentum, what & kForces);
+    const auto [b, e] = detail::partRange(count, t, n);
     const std::size_t mine = fn(scene_.grid, invCell_, halfWidth_, particles_, b, e, scene_.solver.gravity, target);
-    if (mine != kNone) {
+    if (mine != kNoParticle) {
 #pragma omp critical(ecm_mpm_failure)
       bad = std::min(bad, mine);
     }
   }
-  if (bad != kNone) throwLeftGrid(bad);
-  if (used > 1) {
-#pragma omp parallel for num_threads(threads_) schedule(static)
-    for (int node = 0; node < nodes; ++node) {
-      const auto k = static_cast<std::size_t>(node);
-      for (int t = 1; t < used; ++t) {
-        const GridAccumulator& a = scratch_[static_cast<std::size_t>(t - 1)];
-        if (what & kMassMomentum) {
-          grid_.mass[k] += a.mass[k];
-          grid_.momentum[k] += a.momentum[k];
-        }
-        if (what & kForces) {
-          grid_.force[k] += a.force[k];
-          grid_.externalForce[k] += a.externalForce[k];
-        }
-      }
-    }
-  }
+  if (bad != kNoParticle) throwLeftGrid(bad);
+  sumScatterBuffers(what, used);
+  touched_.assign(scratch_.size(), {0, nodes});  // the buffers hold values anywhere
   if (what & kForces) addLoads();
 }
 
 void Solver::gridToParticle(bool withStrainIncrements, bool fusedStress) {
+  gridHoldsState_ = false;
   const std::size_t count = particles_.size();
   const GatherFn fn = gatherFor(scene_.solver.shapeFunction, withStrainIncrements, fusedStress);
-  std::size_t bad = kNone;
+  std::size_t bad = kNoParticle;
   deferredPerThread_.resize(static_cast<std::size_t>(threads_));
   int used = 1;
 #pragma omp parallel num_threads(threads_)
@@ -257,10 +172,10 @@ void Solver::gridToParticle(bool withStrainIncrements, bool fusedStress) {
     used = n;  // read after the region only
     std::vector<std::uint32_t>& mine = deferredPerThread_[static_cast<std::size_t>(t)];
     mine.clear();
-    const auto [b, e] = range(count, t, n);
+    const auto [b, e] = detail::partRange(count, t, n);
     const std::size_t first = fn(scene_.grid, invCell_, halfWidth_, grid_, particles_, b, e, dt_, scene_.solver.flip,
                                  {kernels_.data(), &mine});
-    if (first != kNone) {
+    if (first != kNoParticle) {
 #pragma omp critical(ecm_mpm_failure)
       bad = std::min(bad, first);
     }
@@ -271,11 +186,26 @@ void Solver::gridToParticle(bool withStrainIncrements, bool fusedStress) {
       deferred_.insert(deferred_.end(), deferredPerThread_[static_cast<std::size_t>(t)].begin(),
                        deferredPerThread_[static_cast<std::size_t>(t)].end());
   }
-  if (bad != kNone) {
-    std::ostringstream msg;
-    msg << "step " << step_ + 1 << ": particle " << bad << " has a non-finite velocity or position (velocity ("
-        << particles_.velocity[bad][0] << ", " << particles_.velocity[bad][1] << ") mm/s)";
-    throw SimulationError(FailureKind::NotFinite, step_ + 1, bad, particles_.position[bad], msg.str());
+  if (bad != kNoParticle) throwNotFinite(bad);
+}
+
+void Solver::sumScatterBuffers(unsigned what, int parts) {
+  if (parts <= 1) return;
+  const int nodes = scene_.grid.nodeCount();
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (int node = 0; node < nodes; ++node) {
+    const auto k = static_cast<std::size_t>(node);
+    for (int t = 1; t < parts; ++t) {
+      const GridAccumulator& a = scratch_[static_cast<std::size_t>(t - 1)];
+      if (what & kMassMomentum) {
+        grid_.mass[k] += a.mass[k];
+        grid_.momentum[k] += a.momentum[k];
+      }
+      if (what & kForces) {
+        grid_.force[k] += a.force[k];
+        grid_.externalForce[k] += a.externalForce[k];
+      }
+    }
   }
 }
 
@@ -286,9 +216,16 @@ void Solver::computeStrainIncrements() {
   if (scene_.solver.shapeFunction == ShapeFunction::BSpline2) fn = strainIncrements<ShapeFunction::BSpline2>;
 #pragma omp parallel num_threads(threads_)
   {
-    const auto [b, e] = range(count, omp_get_thread_num(), omp_get_num_threads());
+    const auto [b, e] = detail::partRange(count, omp_get_thread_num(), omp_get_num_threads());
     fn(scene_.grid, invCell_, halfWidth_, grid_, particles_, b, e, dt_);
   }
+}
+
+void Solver::throwNotFinite(std::size_t p) const {
+  std::ostringstream msg;
+  msg << "step " << step_ + 1 << ": particle " << p << " has a non-finite velocity or position (velocity ("
+      << particles_.velocity[p][0] << ", " << particles_.velocity[p][1] << ") mm/s)";
+  throw SimulationError(FailureKind::NotFinite, step_ + 1, p, particles_.position[p], msg.str());
 }
 
 void Solver::throwLeftGrid(std::size_t p) const {

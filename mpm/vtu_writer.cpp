@@ -84,7 +84,7 @@ void writeVtu(const Solver& solver, const std::filesystem::path& path, std::stri
   out += "</DataArray>\n    </FieldData>\n";
   out += "    <Piece NumberOfPoints=\"" + std::to_string(n) + "\" NumberOfCells=\"" + std::to_string(n) + "\">\n";
   out += "      <PointData Scalars=\"damage\" Vectors=\"displacement\">\n";
-  a.add<float>(out, "displacement", 3, n, [&](std::size_t i, int c) { return c < 2 ? p.displacement[i][c] : 0.0; });
+  a.add<float>(out, "displacement", 3, n, [&](std::size_t i, int c) { return c < 2 ? p.displacement(i)[c] : 0.0; });
   a.add<float>(out, "velocity", 3, n, [&](std::size_t i, int c) { return c < 2 ? p.velocity[i][c] : 0.0; });
   a.add<float>(out, "stress", 3, n, [&](std::size_t i, int c) { return p.stress[i][c]; });  // xx, yy, xy (MPa)
   a.add<float>(out, "strain", 3, n, [&](std::size_t i, int c) { return p.strain[i][c]; });  // xx, yy, gamma_xy

@@ -152,6 +152,37 @@ TEST(SnapBackRelease, MixedModeSnapBackOfARecordedDenPointIsReleasedOntoAStableB
   EXPECT_LE(m.equilibrium(b, strain, b.jump, false).residual.norm(), 1e-9 * test::kFt);
 }
 
+TEST(SnapBackRelease, NewtonStallOnANearlyIntactBandOfTheFineDenIsReleased) {
+  // Recorded in the fine DEN 4b run (0.625 mm, CFL 0.6, step 55329, 2026-11-28), where it
+  // stopped the run: a band at D = 0.0009, the bulk compressed along x. Newton on the envelope
+  // stalls (residual 2e-4 MPa after 60 iterations, 3e-6 with 16 sub-steps) without passing an
+  // unstable state, so the update reported NotConverged. The nearest consistent state is a
+  // damage jump away (x = 0.884 for a strain increment of 1e-8): Release must find it.
+  const EnrichedBand m(test::paperEnriched());
+  BandState band;
+  band.crackNormal = Vec2(0.34804432965025472, 0.93747807686276319);
+  band.jump = Vec2(-6.7813686099047065e-06, 1.3839063693808007e-06);
+  band.onsetStrain = Voigt(-4.6060899965983799e-05, 8.2739586954506044e-05, 0.00011092476968647125);
+  band.integrity = 0.99911569424676394;
+  band.volumeFraction = 0.08;
+  const Voigt strain0(-0.00012074431839015152, 0.00011036042654953005, 1.8663507050920813e-05);
+  const Voigt increment(6.6041332149405546e-09, 9.5372468018902191e-09, -5.7981418758228075e-09);
+  BandState b = band;
+  Voigt strain = strain0;
+  const UpdateResult reported = m.updateCracked(b, strain, increment, SnapBackPolicy::Report);
+  EXPECT_EQ(reported.status, UpdateStatus::NotConverged) << "the stall this test was written for is gone";
+  const UpdateResult r = m.updateCracked(b, strain, increment, SnapBackPolicy::Release);
+  ASSERT_TRUE(r.converged()) << toString(r.status) << ", residual " << r.residual;
+  EXPECT_TRUE(r.released);
+  EXPECT_LT(b.integrity, 0.95);  // a damage jump, not a round-off step
+  EXPECT_GT(r.dissipation, 0.0);
+  EXPECT_TRUE(stable(m, b, strain));
+  EXPECT_LE(m.equilibrium(b, strain, b.jump, false).residual.norm(), 1e-9 * test::kFt);  // Eq. (6)
+  // Consistency: the driving force sits on the loading surface of the new damage, Y = F(x).
+  const BandEquilibrium eq = m.equilibrium(b, strain, b.jump, false);
+  EXPECT_NEAR(eq.band.drivingForce / damageFunction(m.bandLaw().law(), b.integrity), 1.0, 1e-9);
+}
+
 TEST(CrackedUpdate, NearlyFailedBandUnloadingInShearConvergesElastically) {
   // Recorded in the notched tension block of tests/mpm/threads_test.cpp (H = 5 mm, D = 0.987):
   // a band exactly on its loading surface, an increment that unloads it. The former update

@@ -30,7 +30,7 @@ Measured vibrate(const BarSetup& bar) {
   for (std::size_t i = 0; i < p.size(); ++i) phi[i] = bar.mode(p.position[i][0]), den += p.mass[i] * phi[i] * phi[i];
   auto modal = [&] {
     double num = 0.0;
-    for (std::size_t i = 0; i < p.size(); ++i) num += p.mass[i] * p.displacement[i][0] * phi[i];
+    for (std::size_t i = 0; i < p.size(); ++i) num += p.mass[i] * p.displacement(i)[0] * phi[i];
     return num / den;
   };
   // The explicit update is staggered: particle velocities after step n+1 are the velocities of

@@ -29,13 +29,13 @@ TEST_P(ThreadCount, OneAndTwoThreadsAgree) {
   double stressScale = 0.0, dispScale = 0.0, velScale = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) {
     stressScale = std::max(stressScale, a.stress[i].norm());
-    dispScale = std::max(dispScale, a.displacement[i].norm());
+    dispScale = std::max(dispScale, a.displacement(i).norm());
     velScale = std::max(velScale, a.velocity[i].norm());
   }
   double ds = 0.0, du = 0.0, dv = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) {
     ds = std::max(ds, (a.stress[i] - b.stress[i]).norm() / stressScale);
-    du = std::max(du, (a.displacement[i] - b.displacement[i]).norm() / dispScale);
+    du = std::max(du, (a.displacement(i) - b.displacement(i)).norm() / dispScale);
     dv = std::max(dv, (a.velocity[i] - b.velocity[i]).norm() / velScale);
     EXPECT_EQ(a.band[i] >= 0, b.band[i] >= 0);
   }

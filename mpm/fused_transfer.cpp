@@ -1,0 +1,232 @@
+// The USL step in one pass over the particles (Solver::advance): each point gathers from the
+// updated grid, moves, takes its closed-form stress (stress_update.hpp), locates its new stencil
+// and scatters its mass, momentum and force into the next step's grid at once, while its fields
+// are in cache. Separate transfers read every particle twice per step, and the step is bound
+// by memory traffic, not arithmetic.
+//
+// Points whose stress is not closed-form (cracked, near onset, smeared) are deferred: they
+// scatter after updateStresses. The particles are split into threads_ fixed parts, one grid
+// buffer each, summed in part order; within a part the sums take its closed-form points in
+// index order, then its deferred points in index order. scatterState() builds exactly that
+// grid from the particles and the deferred list of the last step (first step, restart,
+// particles changed between steps), so a rebuilt grid is bitwise the fused one.
+#include <omp.h>
+
+#include <algorithm>
+
+#include "mpm/solver.hpp"
+#include "mpm/stress_update.hpp"
+#include "mpm/transfer_kernels.hpp"
+
+namespace ecm::mpm {
+
+namespace {
+
+using detail::kNoParticle;
+using detail::ScatterTarget;
+
+struct PartOutcome {
+  std::size_t notFinite = kNoParticle;  // first particle with a non-finite velocity or position
+  bool leftGrid = false;                // a particle's stencil left the grid
+  detail::BaseSpan span;                // of the new stencils
+};
+
+struct TransferSetup {
+  const Grid& grid;
+  Vec2 invCell, halfWidth, gravity;
+  bool withGravity;
+};
+
+template <ShapeFunction F>
+PartOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid, Particles& p, std::size_t begin,
+                                std::size_t end, double dt, double flip, const MaterialKernel* kernels,
+                                ScatterTarget out, std::vector<std::uint32_t>& deferred) {
+  const int nx = t.grid.nodesX();
+  const double pic = 1.0 - flip;
+  PartOutcome r;
+  for (std::size_t i = begin; i < end; ++i) {
+    Stencil s;
+    expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
+    const detail::Gathered at = detail::gatherParticle<F, true>(s, nx, grid);
+    const Vec2 vp = flip * (p.velocity[i] + at.velocityChange) + pic * at.velocity;
+    const Vec2 x = p.position[i] + dt * at.velocity;
+    p.velocity[i] = vp;
+    p.position[i] = x;
+    if (!(vp.allFinite() && x.allFinite())) {
+      if (r.notFinite == kNoParticle) r.notFinite = i;
+      continue;
+    }
+    const Voigt d = detail::strainIncrement(at, dt);
+    Voigt sig;  // the closed-form stress, kept in registers for the scatter below
+    const bool closedForm = closedFormStress(kernels[p.material[i]], d, p.band[i], p.strain[i], sig);
+    if (!closedForm) {
+      p.strainIncrement[i] = d;
+      deferred.push_back(static_cast<std::uint32_t>(i));
+    }
+    StencilAt next;
+    if (!locateStencil<F>(t.grid, t.invCell, t.halfWidth, x, next)) {
+      r.leftGrid = true;  // reported by the next step's scatterState, as the separate transfers do
+      if (closedForm) p.stress[i] = sig;
+      continue;
+    }
+    p.stencilAt[i] = next;
+    r.span.add(next.base);
+    if (!closedForm) continue;
+    expandStencil<F>(next, t.invCell, t.halfWidth, s);
+    detail::scatterParticle<F, true, true>(s, nx, p.mass[i], vp, p.volume[i], sig, t.gravity, t.withGravity, out);
+    p.stress[i] = sig;  // stored after its use: a reload right after the store stalls
+  }
+  return r;
+}
+
+// Scatters the particles of [begin, end) that are not in `listed` (sorted), then those listed;
+// Locate: find their stencils first (a rebuild), else use the stored ones. Returns the first
+// particle whose stencil left the grid.
+template <ShapeFunction F, bool Locate>
+std::size_t scatterInOrder(const TransferSetup& t, Particles& p, std::size_t begin, std::size_t end,
+                           const std::uint32_t* listed, const std::uint32_t* listedEnd, ScatterTarget out,
+                           detail::BaseSpan& span) {
+  const int nx = t.grid.nodesX();
+  const auto one = [&](std::size_t i) {
+    if constexpr (Locate)
+      if (!locateStencil<F>(t.grid, t.invCell, t.halfWidth, p.position[i], p.stencilAt[i])) return false;
+    Stencil s;
+    expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
+    detail::scatterParticle<F, true, true>(s, nx, p, i, t.gravity, t.withGravity, out);
+    span.add(s.base);
+    return true;
+  };
+  std::size_t bad = kNoParticle;
+  const std::uint32_t* next = listed;
+  for (std::size_t i = begin; i < end; ++i) {
+    if (next != listedEnd && *next == i) {
+      ++next;
+      continue;
+    }
+    if (!one(i)) bad = std::min(bad, i);
+  }
+  for (const std::uint32_t* l = listed; l != listedEnd; ++l)
+    if (!one(*l)) bad = std::min<std::size_t>(bad, *l);
+  return bad;
+}
+
+using FusedFn = PartOutcome (*)(const TransferSetup&, const GridFields&, Particles&, std::size_t, std::size_t, double,
+                                double, const MaterialKernel*, ScatterTarget, std::vector<std::uint32_t>&);
+using OrderedFn = std::size_t (*)(const TransferSetup&, Particles&, std::size_t, std::size_t, const std::uint32_t*,
+                                  const std::uint32_t*, ScatterTarget, detail::BaseSpan&);
+
+FusedFn fusedFor(ShapeFunction f) {
+  switch (f) {
+    case ShapeFunction::Linear: return gatherStressScatter<ShapeFunction::Linear>;
+    case ShapeFunction::UGimp: return gatherStressScatter<ShapeFunction::UGimp>;
+    case ShapeFunction::BSpline2: return gatherStressScatter<ShapeFunction::BSpline2>;
+  }
+  return nullptr;
+}
+
+template <bool Locate>
+OrderedFn orderedFor(ShapeFunction f) {
+  switch (f) {
+    case ShapeFunction::Linear: return scatterInOrder<ShapeFunction::Linear, Locate>;
+    case ShapeFunction::UGimp: return scatterInOrder<ShapeFunction::UGimp, Locate>;
+    case ShapeFunction::BSpline2: return scatterInOrder<ShapeFunction::BSpline2, Locate>;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+void Solver::scatterState() {
+  const TransferSetup tr{scene_.grid, invCell_, halfWidth_, scene_.solver.gravity, scene_.solver.gravity.squaredNorm() > 0.0};
+  const OrderedFn fn = orderedFor<true>(scene_.solver.shapeFunction);
+  const std::size_t count = particles_.size();
+  const int nodes = scene_.grid.nodeCount();
+  std::size_t bad = kNoParticle;
+  spans_.resize(static_cast<std::size_t>(threads_));
+#pragma omp parallel for num_threads(threads_) schedule(static, 1) reduction(min : bad)
+  for (int t = 0; t < threads_; ++t) {
+    const ScatterTarget target = part(t);
+    detail::zeroTarget(target, nodes, true, true);
+    const auto [b, e] = detail::partRange(count, t, threads_);
+    const std::uint32_t* end = deferred_.data() + deferred_.size();
+    const std::uint32_t* first = std::lower_bound(static_cast<const std::uint32_t*>(deferred_.data()), end, static_cast<std::uint32_t>(b));
+    const std::uint32_t* last = std::lower_bound(first, end, static_cast<std::uint32_t>(e));
+    detail::BaseSpan span;
+    bad = std::min(bad, fn(tr, particles_, b, e, first, last, target, span));
+    spans_[static_cast<std::size_t>(t)] = {span.lo, span.hi};
+  }
+  if (bad != kNoParticle) throwLeftGrid(bad);
+  sumTouchedNodes();
+  gridHoldsState_ = true;
+}
+
+void Solver::gatherStressScatter() {
+  const TransferSetup tr{scene_.grid, invCell_, halfWidth_, scene_.solver.gravity, scene_.solver.gravity.squaredNorm() > 0.0};
+  const FusedFn fn = fusedFor(scene_.solver.shapeFunction);
+  const std::size_t count = particles_.size();
+  const int nodes = scene_.grid.nodeCount();
+  deferredPerThread_.resize(static_cast<std::size_t>(threads_));
+  std::size_t notFinite = kNoParticle;
+  bool leftGrid = false;
+  spans_.resize(static_cast<std::size_t>(threads_));
+#pragma omp parallel for num_threads(threads_) schedule(static, 1) reduction(min : notFinite) reduction(|| : leftGrid)
+  for (int t = 0; t < threads_; ++t) {
+    const ScatterTarget target = part(t);
+    if (t == 0) {
+      detail::zeroTarget(target, nodes, true, true);  // the grid itself: every node
+    } else {  // a buffer: only where the last scatter left values
+      const auto [lo, hi] = touched_[static_cast<std::size_t>(t - 1)];
+      detail::zeroNodes(target, lo, hi);
+    }
+    std::vector<std::uint32_t>& mine = deferredPerThread_[static_cast<std::size_t>(t)];
+    mine.clear();
+    const auto [b, e] = detail::partRange(count, t, threads_);
+    const PartOutcome o = fn(tr, grid_, particles_, b, e, dt_, scene_.solver.flip, kernels_.data(), target, mine);
+    notFinite = std::min(notFinite, o.notFinite);
+    leftGrid = leftGrid || o.leftGrid;
+    spans_[static_cast<std::size_t>(t)] = {o.span.lo, o.span.hi};
+  }
+  deferred_.clear();  // part t precedes part t + 1: the joined list is in index order
+  for (const auto& mine : deferredPerThread_) deferred_.insert(deferred_.end(), mine.begin(), mine.end());
+  gridHoldsState_ = false;
+  if (notFinite != kNoParticle) throwNotFinite(notFinite);
+  gridPending_ = !leftGrid;
+}
+
+void Solver::scatterDeferred() {
+  if (!gridPending_) return;  // a stencil left the grid: the next step's scatterState reports it
+  gridPending_ = false;
+  const TransferSetup tr{scene_.grid, invCell_, halfWidth_, scene_.solver.gravity, scene_.solver.gravity.squaredNorm() > 0.0};
+  const OrderedFn fn = orderedFor<false>(scene_.solver.shapeFunction);
+#pragma omp parallel for num_threads(threads_) schedule(static, 1)
+  for (int t = 0; t < threads_; ++t) {
+    const std::vector<std::uint32_t>& mine = deferredPerThread_[static_cast<std::size_t>(t)];
+    auto& [lo, hi] = spans_[static_cast<std::size_t>(t)];
+    detail::BaseSpan span{lo, hi};
+    fn(tr, particles_, 0, 0, mine.data(), mine.data() + mine.size(), part(t), span);
+    lo = span.lo, hi = span.hi;
+  }
+  sumTouchedNodes();
+  gridHoldsState_ = true;
+}
+
+void Solver::sumTouchedNodes() {
+  const int nx = scene_.grid.nodesX(), nodes = scene_.grid.nodeCount();
+  const int reach = (supportSize(scene_.solver.shapeFunction) - 1) * nx + supportSize(scene_.solver.shapeFunction);
+  for (int t = 1; t < threads_; ++t) {
+    const auto [lo, hi] = spans_[static_cast<std::size_t>(t)];
+    const std::pair<int, int> range = lo > hi ? std::pair{0, 0} : std::pair{lo, std::min(nodes, hi + reach)};
+    touched_[static_cast<std::size_t>(t - 1)] = range;
+    const GridAccumulator& a = scratch_[static_cast<std::size_t>(t - 1)];
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (int node = range.first; node < range.second; ++node) {
+      const auto k = static_cast<std::size_t>(node);
+      grid_.mass[k] += a.mass[k];
+      grid_.momentum[k] += a.momentum[k];
+      grid_.force[k] += a.force[k];
+      grid_.externalForce[k] += a.externalForce[k];
+    }
+  }
+}
+
+}  // namespace ecm::mpm
