@@ -37,6 +37,10 @@ struct TransferSetup {
   bool withGravity;
 };
 
+TransferSetup setupOf(const Scene& scene, const Vec2& invCell, const Vec2& halfWidth) {
+  return {scene.grid, invCell, halfWidth, scene.solver.gravity, scene.solver.gravity.squaredNorm() > 0.0};
+}
+
 template <ShapeFunction F>
 PartOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid, Particles& p, std::size_t begin,
                                 std::size_t end, double dt, double flip, const MaterialKernel* kernels,
@@ -137,7 +141,7 @@ OrderedFn orderedFor(ShapeFunction f) {
 }  // namespace
 
 void Solver::scatterState() {
-  const TransferSetup tr{scene_.grid, invCell_, halfWidth_, scene_.solver.gravity, scene_.solver.gravity.squaredNorm() > 0.0};
+  const TransferSetup tr = setupOf(scene_, invCell_, halfWidth_);
   const OrderedFn fn = orderedFor<true>(scene_.solver.shapeFunction);
   const std::size_t count = particles_.size();
   const int nodes = scene_.grid.nodeCount();
@@ -161,7 +165,7 @@ void Solver::scatterState() {
 }
 
 void Solver::gatherStressScatter() {
-  const TransferSetup tr{scene_.grid, invCell_, halfWidth_, scene_.solver.gravity, scene_.solver.gravity.squaredNorm() > 0.0};
+  const TransferSetup tr = setupOf(scene_, invCell_, halfWidth_);
   const FusedFn fn = fusedFor(scene_.solver.shapeFunction);
   const std::size_t count = particles_.size();
   const int nodes = scene_.grid.nodeCount();
@@ -196,7 +200,7 @@ void Solver::gatherStressScatter() {
 void Solver::scatterDeferred() {
   if (!gridPending_) return;  // a stencil left the grid: the next step's scatterState reports it
   gridPending_ = false;
-  const TransferSetup tr{scene_.grid, invCell_, halfWidth_, scene_.solver.gravity, scene_.solver.gravity.squaredNorm() > 0.0};
+  const TransferSetup tr = setupOf(scene_, invCell_, halfWidth_);
   const OrderedFn fn = orderedFor<false>(scene_.solver.shapeFunction);
 #pragma omp parallel for num_threads(threads_) schedule(static, 1)
   for (int t = 0; t < threads_; ++t) {
@@ -217,15 +221,7 @@ void Solver::sumTouchedNodes() {
     const auto [lo, hi] = spans_[static_cast<std::size_t>(t)];
     const std::pair<int, int> range = lo > hi ? std::pair{0, 0} : std::pair{lo, std::min(nodes, hi + reach)};
     touched_[static_cast<std::size_t>(t - 1)] = range;
-    const GridAccumulator& a = scratch_[static_cast<std::size_t>(t - 1)];
-#pragma omp parallel for num_threads(threads_) schedule(static)
-    for (int node = range.first; node < range.second; ++node) {
-      const auto k = static_cast<std::size_t>(node);
-      grid_.mass[k] += a.mass[k];
-      grid_.momentum[k] += a.momentum[k];
-      grid_.force[k] += a.force[k];
-      grid_.externalForce[k] += a.externalForce[k];
-    }
+    addScatterBuffer(t, kMassMomentum | kForces, range.first, range.second);
   }
 }
 

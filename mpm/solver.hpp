@@ -69,10 +69,9 @@ class Solver {
   void particleToGrid(unsigned transfer);
   void updateGrid();          // v^n = p/m, forces and damping -> v^{n+1}, conditions, reactions
   void gridVelocities();      // v = p/m with the velocity conditions (USF strain, MUSL remap)
-  // Velocities (PIC/FLIP), positions and, with strain increments, optionally the stress of every
-  // point whose update is closed-form (elastic, intact far from onset: stress_update.hpp); the
-  // others are listed in deferred_ for updateStresses().
-  void gridToParticle(bool withStrainIncrements, bool fusedStress = false);
+  // Velocities (PIC/FLIP), positions and optionally strain increments (USF, MUSL; USL runs the
+  // fused pass of fused_transfer.cpp instead).
+  void gridToParticle(bool withStrainIncrements);
   void computeStrainIncrements();  // from the grid velocities
   // The material update (sub-stepping on failure) of every particle, or of deferred_ only.
   void updateStresses(bool deferredOnly = false);
@@ -145,6 +144,7 @@ class Solver {
   void scatterDeferred();      // the deferred points' scatter, after updateStresses; sums the parts
   detail::ScatterTarget part(int t);  // scatter buffer of part t: the grid (0) or scratch_[t - 1]
   void sumScatterBuffers(unsigned what, int parts);
+  void addScatterBuffer(int t, unsigned what, int lo, int hi);
   // Fused USL: the scatter buffers summed only over the nodes their part touched (a part's
   // particles are contiguous in the seeding order, so a band of the grid), which are also the
   // only nodes the next step has to zero.

@@ -58,16 +58,9 @@ ScatterFn scatterFor(ShapeFunction f, unsigned what) {
   return nullptr;
 }
 
-// Stress: the closed-form stress update fused in (USL); the points it cannot take are appended
-// to `deferred` with their strain increment stored.
-struct FusedStress {
-  const MaterialKernel* kernels;
-  std::vector<std::uint32_t>* deferred;
-};
-
-template <ShapeFunction F, bool WithStrain, bool Stress>
+template <ShapeFunction F, bool WithStrain>
 std::size_t gather(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, const GridFields& grid, Particles& p,
-                   std::size_t begin, std::size_t end, double dt, double flip, FusedStress fused) {
+                   std::size_t begin, std::size_t end, double dt, double flip) {
   const int nx = g.nodesX();
   const double pic = 1.0 - flip;
   std::size_t bad = kNoParticle;
@@ -78,17 +71,7 @@ std::size_t gather(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, co
     Vec2& vp = p.velocity[i];
     vp = flip * (vp + at.velocityChange) + pic * at.velocity;
     p.position[i] += dt * at.velocity;
-    if constexpr (WithStrain) {
-      const Voigt d = detail::strainIncrement(at, dt);
-      if constexpr (Stress) {
-        if (!closedFormStress(fused.kernels[p.material[i]], d, p.band[i], p.strain[i], p.stress[i])) {
-          p.strainIncrement[i] = d;
-          fused.deferred->push_back(static_cast<std::uint32_t>(i));
-        }
-      } else {
-        p.strainIncrement[i] = d;
-      }
-    }
+    if constexpr (WithStrain) p.strainIncrement[i] = detail::strainIncrement(at, dt);
     if (bad == kNoParticle && !(vp.allFinite() && p.position[i].allFinite())) bad = i;
   }
   return bad;
@@ -106,21 +89,20 @@ void strainIncrements(const Grid& g, const Vec2& invCell, const Vec2& halfWidth,
 }
 
 using GatherFn = std::size_t (*)(const Grid&, const Vec2&, const Vec2&, const GridFields&, Particles&, std::size_t,
-                                 std::size_t, double, double, FusedStress);
+                                 std::size_t, double, double);
 using StrainFn = void (*)(const Grid&, const Vec2&, const Vec2&, const GridFields&, Particles&, std::size_t, std::size_t,
                           double);
 
 template <ShapeFunction F>
-GatherFn gatherFor(bool withStrain, bool stress) {
-  if (stress) return gather<F, true, true>;
-  return withStrain ? gather<F, true, false> : gather<F, false, false>;
+GatherFn gatherFor(bool withStrain) {
+  return withStrain ? gather<F, true> : gather<F, false>;
 }
 
-GatherFn gatherFor(ShapeFunction f, bool withStrain, bool stress) {
+GatherFn gatherFor(ShapeFunction f, bool withStrain) {
   switch (f) {
-    case ShapeFunction::Linear: return gatherFor<ShapeFunction::Linear>(withStrain, stress);
-    case ShapeFunction::UGimp: return gatherFor<ShapeFunction::UGimp>(withStrain, stress);
-    case ShapeFunction::BSpline2: return gatherFor<ShapeFunction::BSpline2>(withStrain, stress);
+    case ShapeFunction::Linear: return gatherFor<ShapeFunction::Linear>(withStrain);
+    case ShapeFunction::UGimp: return gatherFor<ShapeFunction::UGimp>(withStrain);
+    case ShapeFunction::BSpline2: return gatherFor<ShapeFunction::BSpline2>(withStrain);
   }
   return nullptr;
 }
@@ -158,53 +140,41 @@ void Solver::particleToGrid(unsigned what) {
   if (what & kForces) addLoads();
 }
 
-void Solver::gridToParticle(bool withStrainIncrements, bool fusedStress) {
+void Solver::gridToParticle(bool withStrainIncrements) {
   gridHoldsState_ = false;
   const std::size_t count = particles_.size();
-  const GatherFn fn = gatherFor(scene_.solver.shapeFunction, withStrainIncrements, fusedStress);
+  const GatherFn fn = gatherFor(scene_.solver.shapeFunction, withStrainIncrements);
   std::size_t bad = kNoParticle;
-  deferredPerThread_.resize(static_cast<std::size_t>(threads_));
-  int used = 1;
 #pragma omp parallel num_threads(threads_)
   {
-    const int t = omp_get_thread_num(), n = omp_get_num_threads();
-#pragma omp single nowait
-    used = n;  // read after the region only
-    std::vector<std::uint32_t>& mine = deferredPerThread_[static_cast<std::size_t>(t)];
-    mine.clear();
-    const auto [b, e] = detail::partRange(count, t, n);
-    const std::size_t first = fn(scene_.grid, invCell_, halfWidth_, grid_, particles_, b, e, dt_, scene_.solver.flip,
-                                 {kernels_.data(), &mine});
+    const auto [b, e] = detail::partRange(count, omp_get_thread_num(), omp_get_num_threads());
+    const std::size_t first = fn(scene_.grid, invCell_, halfWidth_, grid_, particles_, b, e, dt_, scene_.solver.flip);
     if (first != kNoParticle) {
 #pragma omp critical(ecm_mpm_failure)
       bad = std::min(bad, first);
     }
   }
-  if (fusedStress) {  // thread t's range precedes thread t + 1's: the joined list is in index order
-    deferred_.clear();
-    for (int t = 0; t < used; ++t)
-      deferred_.insert(deferred_.end(), deferredPerThread_[static_cast<std::size_t>(t)].begin(),
-                       deferredPerThread_[static_cast<std::size_t>(t)].end());
-  }
   if (bad != kNoParticle) throwNotFinite(bad);
 }
 
 void Solver::sumScatterBuffers(unsigned what, int parts) {
-  if (parts <= 1) return;
-  const int nodes = scene_.grid.nodeCount();
+  for (int t = 1; t < parts; ++t) addScatterBuffer(t, what, 0, scene_.grid.nodeCount());
+}
+
+// Buffer t added into the grid over nodes [lo, hi). Buffer by buffer, node by node: every node
+// sums the buffers in part order.
+void Solver::addScatterBuffer(int t, unsigned what, int lo, int hi) {
+  const GridAccumulator& a = scratch_[static_cast<std::size_t>(t - 1)];
 #pragma omp parallel for num_threads(threads_) schedule(static)
-  for (int node = 0; node < nodes; ++node) {
+  for (int node = lo; node < hi; ++node) {
     const auto k = static_cast<std::size_t>(node);
-    for (int t = 1; t < parts; ++t) {
-      const GridAccumulator& a = scratch_[static_cast<std::size_t>(t - 1)];
-      if (what & kMassMomentum) {
-        grid_.mass[k] += a.mass[k];
-        grid_.momentum[k] += a.momentum[k];
-      }
-      if (what & kForces) {
-        grid_.force[k] += a.force[k];
-        grid_.externalForce[k] += a.externalForce[k];
-      }
+    if (what & kMassMomentum) {
+      grid_.mass[k] += a.mass[k];
+      grid_.momentum[k] += a.momentum[k];
+    }
+    if (what & kForces) {
+      grid_.force[k] += a.force[k];
+      grid_.externalForce[k] += a.externalForce[k];
     }
   }
 }
