@@ -155,6 +155,7 @@ void writeCheckpoint(const std::filesystem::path& path, const Solver& solver, co
 
   e.put(run.nextOutput);
   e.put(run.peakLoad);
+  e.put(run.stopWatchPeak);
   e.put(run.history.bytes);
   e.put(run.history.digest);
   e.put(static_cast<std::uint64_t>(run.history.rows));
@@ -280,6 +281,7 @@ RunBookkeeping readCheckpoint(const std::filesystem::path& path, Solver& solver,
 
   run.nextOutput = d.get<double>();
   run.peakLoad = d.get<double>();
+  run.stopWatchPeak = d.get<double>();
   run.history.bytes = d.get<std::uint64_t>();
   run.history.digest = d.get<std::uint64_t>();
   run.history.rows = static_cast<std::size_t>(d.get<std::uint64_t>());

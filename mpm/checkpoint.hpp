@@ -31,7 +31,7 @@
 
 namespace ecm::mpm {
 
-inline constexpr std::uint32_t kCheckpointVersion = 2;  // 2: the USL deferred list
+inline constexpr std::uint32_t kCheckpointVersion = 3;  // 2: the USL deferred list; 3: the stop_when peak
 
 // A checkpoint that cannot be used: missing, truncated, corrupted, foreign, of another format
 // version, or written for another scene. The message names the file and says why.
@@ -43,6 +43,7 @@ struct CheckpointError : std::runtime_error {
 struct RunBookkeeping {
   double nextOutput = 0.0;          // s: the time of the next output row
   double peakLoad = 0.0;            // N
+  double stopWatchPeak = 0.0;       // N: the stop_when watch's peak (mpm/stop_when.hpp)
   io::CsvWriter::Resume history;    // history.csv up to the checkpoint
   std::vector<double> snapshotTimes;  // s: the VTU snapshots so far
   int threads = 0;                  // of the solver that wrote it (read only)

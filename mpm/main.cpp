@@ -111,8 +111,9 @@ int main(int argc, char** argv) {
     installStopHandler();
     const ecm::mpm::RunResult r = ecm::mpm::runScene(scene, options);
     std::fprintf(stderr, "%s: %ld steps, %zu particles, peak load %.6g N, %.2f s -> %s\n",
-                 r.completed ? "completed" : (r.stopped ? "STOPPED" : "FAILED"), r.steps, r.particles, r.peakLoad,
-                 r.wallTime, options.outputDir.string().c_str());
+                 r.completed ? (r.endedByStopWhen ? "completed (stop_when met)" : "completed")
+                             : (r.stopped ? "STOPPED" : "FAILED"),
+                 r.steps, r.particles, r.peakLoad, r.wallTime, options.outputDir.string().c_str());
     if (r.stopped) {
       std::fprintf(stderr, "stopped at step %ld (%s); checkpoint %s\nresume with: %s\n", r.steps,
                    stopRequested.load() ? "signal" : "--max-steps", r.checkpoint.string().c_str(),

@@ -186,7 +186,26 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
   // A history row at every output step; a VTU snapshot at every snapshot_every-th one (row 0, N,
   // 2N, ...) and at the end. The row count survives a restart, so the series goes on in step.
   // (A half-step tolerance in finished(): round-off in the accumulated time adds no step.)
-  auto finished = [&] { return solver.time() >= scene.endTime - 0.5 * solver.timeStep(); };
+  // The scene's stop_when (mpm/stop_when.hpp) ends it earlier, at an output row.
+  auto finished = [&] { return result.endedByStopWhen || solver.time() >= scene.endTime - 0.5 * solver.timeStep(); };
+  StopWatch watch;
+  std::size_t watched = 0;
+  int watchedComponent = 0;
+  if (scene.stopWhen) {
+    watched = static_cast<std::size_t>(
+        std::find_if(scene.conditions.begin(), scene.conditions.end(),
+                     [&](const NodeCondition& c) { return c.name == scene.stopWhen->condition; }) -
+        scene.conditions.begin());
+    watchedComponent = drivenComponent(scene.conditions.at(watched));
+  }
+  auto watchStop = [&] {  // at an output row, before it is written
+    if (!scene.stopWhen) return;
+    const double load = solver.conditions()[watched].reaction[watchedComponent];
+    if (watch.observe(*scene.stopWhen, solver.time(), load)) {
+      result.endedByStopWhen = true;
+      result.stopLoad = load;
+    }
+  };
   auto output = [&](bool forceSnapshot = false) {
     const std::size_t row = history->rows();
     history->row(historyRow(solver));
@@ -224,6 +243,7 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
       ++nextSnapshot;
     nextOutput = book.nextOutput;
     result.peakLoad = book.peakLoad;
+    watch.peak = book.stopWatchPeak;
     checkpointStep = solver.step();
   }
   auto checkpoint = [&] {
@@ -231,6 +251,7 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
     history->flush();
     book.nextOutput = nextOutput;
     book.peakLoad = result.peakLoad;
+    book.stopWatchPeak = watch.peak;
     book.history = {history->bytes(), history->digest(), history->rows()};
     if (snapshots) book.snapshotTimes = snapshots->times();
     writeCheckpoint(checkpointFile, solver, book, options.sceneHash);
@@ -246,7 +267,10 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
 
   bool outputFailed = false;
   try {
-    if (!options.restart) output();
+    if (!options.restart) {
+      watchStop();
+      output();
+    }
     while (!finished()) {
       if (stopRequested()) {
         checkpoint();
@@ -257,6 +281,7 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
       trackPeak();
       particleSnapshots();
       if (finished() || (scene.outputInterval > 0.0 && solver.time() >= nextOutput - 0.5 * solver.timeStep())) {
+        watchStop();
         output();
         while (scene.outputInterval > 0.0 && nextOutput <= solver.time() + 0.5 * solver.timeStep())
           nextOutput += scene.outputInterval;  // (output_interval 0: the last step only)
@@ -332,6 +357,15 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
         {"damping", e.damping}}},
       {"checkpoints_written", result.checkpoints},
       {"units", "mm, N, MPa, t, s"}};
+  if (scene.stopWhen) {
+    const StopWhen& w = *scene.stopWhen;
+    summary["stop_when"] = {{"condition", w.condition},
+                            {"load_below", w.loadBelow},
+                            {"after_time_s", w.afterTime},
+                            {"met", result.endedByStopWhen},
+                            {"peak_of_rows_N", watch.peak}};
+    if (result.endedByStopWhen) summary["stop_when"]["load_at_stop_N"] = result.stopLoad;
+  }
   if (!result.completed && !result.stopped) summary["error"] = result.error;
   if (result.restartedFrom >= 0) summary["restarted_from_step"] = result.restartedFrom;
   if (!result.checkpoint.empty()) {

@@ -37,12 +37,14 @@ struct RunResult {
   long restartedFrom = -1; // the step of the checkpoint a restart continued from
   std::size_t particles = 0;
   double peakLoad = 0.0;   // N: the largest reaction of a driven condition (or applied load)
+  bool endedByStopWhen = false;  // completed at the scene's stop_when, before end_time
+  double stopLoad = 0.0;         // N: the watched reaction at that row
   double wallTime = 0.0;   // s, of this run (a restart counts from its own start)
   long checkpoints = 0;    // written by this run
   std::filesystem::path checkpoint;  // the checkpoint left in the folder (empty: none)
 };
 
-// Runs the scene to its end time. Input errors (invalid scene) throw std::invalid_argument and
+// Runs the scene to its end time (or its stop_when). Input errors (invalid scene) throw std::invalid_argument and
 // an output folder that cannot be written io::OutputError, before anything is written; a
 // checkpoint that a restart cannot use throws CheckpointError (mpm/checkpoint.hpp), before
 // anything is changed. A failure during the run (simulation, or a file that cannot be written)

@@ -1,5 +1,6 @@
 #include "mpm/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -73,6 +74,13 @@ void Scene::validate() const {
       checkHistory(c.field->scale, "condition '" + c.name + "'");
       if (!c.field->gradient.allFinite()) fail("condition '" + c.name + "': velocity gradient must be finite");
     }
+  }
+  if (stopWhen) {
+    const auto it = std::find_if(conditions.begin(), conditions.end(),
+                                 [&](const NodeCondition& c) { return c.name == stopWhen->condition; });
+    if (it == conditions.end()) fail("stop_when: no condition is named '" + stopWhen->condition + "'");
+    if (!(stopWhen->loadBelow > 0.0 && stopWhen->loadBelow < 1.0)) fail("stop_when: load_below must be in (0, 1)");
+    if (!(stopWhen->afterTime >= 0.0 && std::isfinite(stopWhen->afterTime))) fail("stop_when: after_time must be >= 0 s");
   }
   for (const auto& l : loads) {
     if (!(l.box.max[0] >= l.box.min[0] && l.box.max[1] >= l.box.min[1])) fail("load '" + l.name + "': box needs max >= min");

@@ -2,6 +2,7 @@
 // The plain description of an MPM run: grid, materials, bodies, boundary conditions, loads and
 // solver settings. Built in C++ (tests) or by the YAML reader (mpm/scene_yaml.hpp); checked
 // once by validate().
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "mpm/geometry.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/shape_function.hpp"
+#include "mpm/stop_when.hpp"
 
 namespace ecm::mpm {
 
@@ -58,7 +60,8 @@ struct Scene {
   std::vector<NodeCondition> conditions;
   std::vector<Load> loads;
   SolverSettings solver;
-  double endTime = 0.0;         // s
+  double endTime = 0.0;         // s: the latest end
+  std::optional<StopWhen> stopWhen;  // an earlier end by a condition's load (mpm/stop_when.hpp)
   double outputInterval = 0.0;  // s between output steps (0: only the first and last)
   int snapshotEvery = 1;        // a VTU snapshot at every N-th output step (and the last)
   std::vector<double> particleSnapshots;  // s, increasing: particles_t<time>.csv at each (maps of states)

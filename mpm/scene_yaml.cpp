@@ -1,5 +1,6 @@
 #include "mpm/scene_yaml.hpp"
 
+#include <algorithm>
 #include <map>
 
 #include "io/material_yaml.hpp"
@@ -245,6 +246,19 @@ CheckpointSettings readCheckpoint(const YamlMap& m) {
   return c;
 }
 
+// stop_when: {condition: NAME, load_below: FRACTION, after_time: T}; `conditions` are the
+// scene's, read before, so that the name can be checked at this map's line.
+StopWhen readStopWhen(const YamlMap& m, const std::vector<NodeCondition>& conditions) {
+  StopWhen w;
+  w.condition = m.get<std::string>("condition");
+  if (std::none_of(conditions.begin(), conditions.end(), [&](const NodeCondition& c) { return c.name == w.condition; }))
+    m.fail("condition", "no condition is named '" + w.condition + "'");
+  w.loadBelow = m.get<double>("load_below", Range::open(0.0, 1.0));
+  w.afterTime = m.getOr<double>("after_time", 0.0, Range::nonNegative());
+  m.finish();
+  return w;
+}
+
 }  // namespace
 
 Scene readScene(const YamlMap& m) {
@@ -298,6 +312,10 @@ Scene readScene(const YamlMap& m) {
     for (const YamlMap& c : m.sequence("conditions")) s.conditions.push_back(readCondition(c, s.grid));
   if (m.has("loads"))
     for (const YamlMap& l : m.sequence("loads")) s.loads.push_back(readLoad(l));
+  if (m.has("stop_when")) {
+    s.stopWhen = readStopWhen(m.child("stop_when"), s.conditions);
+    if (!(s.stopWhen->afterTime < s.endTime)) m.fail("stop_when", "after_time is not before end_time: it would never stop the run");
+  }
   m.finish();
   try {
     s.validate();  // whatever the piecewise checks above could not see

@@ -65,6 +65,10 @@
 //   loads:                      # total force spread equally over the set
 //     - {name: pull, box: {min: [0, 95], max: [100, 100]}, on: particles, force: [0, 1000],
 //        history: {type: linear_ramp, value: 1, time: 1e-4}}
+//   stop_when:                  # optional: end before end_time at the first output row (at or
+//     condition: top            #   after after_time) where this condition's reaction along its
+//     load_below: 0.1           #   driven component is below load_below (in (0, 1)) times its
+//     after_time: 5e-4          #   peak over the rows so far (s, >= 0, < end_time; default 0)
 //
 // Histories: {type: hold, value: V} | {type: linear_ramp | smooth_ramp, value: V, time: T}
 //          | {type: table, points: [[t0, v0], [t1, v1], ...]}

@@ -118,6 +118,7 @@ TEST(Checkpoint, RestoresEveryArrayAndTheStepStateBitwise) {
   RunBookkeeping book;
   book.nextOutput = 1.1e-4;
   book.peakLoad = 1234.5;
+  book.stopWatchPeak = 987.25;
   book.history = {4321, 0x1234567890abcdefull, 12};
   book.snapshotTimes = {0.0, 1e-5, 2e-5};
   const fs::path file = tmp.path() / "checkpoint.bin";
@@ -129,6 +130,7 @@ TEST(Checkpoint, RestoresEveryArrayAndTheStepStateBitwise) {
   expectSameState(a, b);
   EXPECT_EQ(read.nextOutput, book.nextOutput);
   EXPECT_EQ(read.peakLoad, book.peakLoad);
+  EXPECT_EQ(read.stopWatchPeak, book.stopWatchPeak);
   EXPECT_EQ(read.history.bytes, book.history.bytes);
   EXPECT_EQ(read.history.digest, book.history.digest);
   EXPECT_EQ(read.history.rows, book.history.rows);

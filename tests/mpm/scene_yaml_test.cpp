@@ -140,6 +140,33 @@ TEST(SceneYaml, CheckpointKeysAreReadAndChecked) {
   }
 }
 
+// stop_when names one of the scene's conditions, a fraction in (0, 1) and a time before end_time.
+TEST(SceneYaml, StopWhenKeysAreReadAndChecked) {
+  EXPECT_FALSE(readScene(io::parseYaml(kScene, "scene.yaml")).stopWhen);
+  const Scene s = readScene(io::parseYaml(kScene + "stop_when: {condition: base, load_below: 0.1, after_time: 5e-4}\n", "scene.yaml"));
+  ASSERT_TRUE(s.stopWhen);
+  EXPECT_EQ(s.stopWhen->condition, "base");
+  EXPECT_EQ(s.stopWhen->loadBelow, 0.1);
+  EXPECT_EQ(s.stopWhen->afterTime, 5e-4);
+  EXPECT_EQ(readScene(io::parseYaml(kScene + "stop_when: {condition: base, load_below: 0.5}\n", "scene.yaml")).stopWhen->afterTime,
+            0.0);
+  for (const auto& [tail, reason] : std::vector<std::pair<std::string, std::string>>{
+           {"stop_when: {condition: top, load_below: 0.1}\n", "no condition is named 'top'"},
+           {"stop_when: {condition: base, load_below: 1.0}\n", "load_below"},   // a fraction in (0, 1)
+           {"stop_when: {condition: base, load_below: 0}\n", "load_below"},
+           {"stop_when: {condition: base, load_below: low}\n", "load_below"},  // not a number
+           {"stop_when: {condition: base}\n", "load_below"},                    // missing
+           {"stop_when: {load_below: 0.1}\n", "condition"},
+           {"stop_when: {condition: base, load_below: 0.1, after_time: -1}\n", "after_time"},
+           {"stop_when: {condition: base, load_below: 0.1, after_time: 2e-3}\n", "not before end_time"},
+           {"stop_when: {condition: base, load_below: 0.1, every: 2}\n", "unknown key 'every'"}}) {
+    const io::InputError e = inputError([&] { readScene(io::parseYaml(kScene + tail, "scene.yaml")); });
+    EXPECT_EQ(e.line, 10) << tail;
+    expectContains(e.what(), "scene.yaml:10:");
+    expectContains(e.what(), reason);
+  }
+}
+
 }  // namespace
 }  // namespace ecm::mpm::test
 
