@@ -232,3 +232,37 @@ TEST(EnrichedBand, UpdateWithoutTangentGivesTheSameStateAndStress) {
 
 }  // namespace
 }  // namespace ecm
+
+namespace ecm {
+namespace {
+
+// Stress locking, a property of one fixed band per point (Eqs. (2)-(6)): the band strain rate
+// (n (x) [u'])^s / h of Eq. (3) has no component along the band, t.(n (x) [u'])^s t = 0, so a
+// failed band (sigma_L -> 0, hence sigma n -> 0 by Eq. (6)) leaves the bulk in uniaxial stress
+// along t, and by Eq. (4) the bulk takes the whole macroscopic eps_tt: d sigma_tt / d eps_tt =
+// E / (1 - f), however far past f_t'. A crack that turns away from the band a point chose at
+// onset is bridged by this stress (README, the DEN's tail). Expected value: E / (1 - f) with
+// f = h / H = 0.05 / 2.5: 32000 / 0.98 = 32653.06 MPa.
+TEST(EnrichedBand, AFailedBandCarriesNoTractionButLocksTheStressAlongIt) {
+  test::EnrichedRun run(test::paperEnriched(), 2.5);
+  ASSERT_TRUE(run.step(test::kFt / test::kE));
+  for (double d = 1e-6; run.state.strain[0] < 0.5; d *= 1.1) ASSERT_TRUE(run.step(d));  // opening ~1.2 mm
+  ASSERT_TRUE(run.state.band);
+  EXPECT_LT(std::abs(run.stress[0]), 1e-3 * test::kFt) << "the band has failed: no traction across it";
+  const Voigt before = run.stress;
+  const double dEyy = 1e-4;
+  for (int i = 0; i < 10; ++i) {  // eps_yy (along the band, t = (0, 1)) up to 10 x the onset strain
+    const UpdateResult r = run.model.update(run.state, Voigt(0.0, dEyy, 0.0), run.size);
+    ASSERT_TRUE(r.converged()) << toString(r.status);
+    run.stress = r.stress;
+  }
+  const Voigt change = run.stress - before;
+  const double f = test::kH / 2.5;
+  EXPECT_NEAR(change[1] / (10 * dEyy), test::kE / (1.0 - f), 1e-9 * test::kE);
+  EXPECT_LT(std::abs(run.stress[0]), 1e-3 * test::kFt);  // sigma_nn stays ~0
+  EXPECT_LT(std::abs(run.stress[2]), 1e-3 * test::kFt);  // sigma_nt stays ~0
+  EXPECT_GT(run.stress[1], 10.0 * test::kFt) << "the bulk carries 10 f_t' along the failed band";
+}
+
+}  // namespace
+}  // namespace ecm
