@@ -81,6 +81,7 @@ void Scene::validate() const {
     if (it == conditions.end()) fail("stop_when: no condition is named '" + stopWhen->condition + "'");
     if (!(stopWhen->loadBelow > 0.0 && stopWhen->loadBelow < 1.0)) fail("stop_when: load_below must be in (0, 1)");
     if (!(stopWhen->afterTime >= 0.0 && std::isfinite(stopWhen->afterTime))) fail("stop_when: after_time must be >= 0 s");
+    if (!(outputInterval > 0.0)) fail("stop_when is checked at the output rows: needs output_interval > 0");
   }
   for (const auto& l : loads) {
     if (!(l.box.max[0] >= l.box.min[0] && l.box.max[1] >= l.box.min[1])) fail("load '" + l.name + "': box needs max >= min");

@@ -315,6 +315,7 @@ Scene readScene(const YamlMap& m) {
   if (m.has("stop_when")) {
     s.stopWhen = readStopWhen(m.child("stop_when"), s.conditions);
     if (!(s.stopWhen->afterTime < s.endTime)) m.fail("stop_when", "after_time is not before end_time: it would never stop the run");
+    if (!(s.outputInterval > 0.0)) m.fail("stop_when", "is checked at the output rows: needs output_interval > 0");
   }
   m.finish();
   try {

@@ -68,7 +68,8 @@
 //   stop_when:                  # optional: end before end_time at the first output row (at or
 //     condition: top            #   after after_time) where this condition's reaction along its
 //     load_below: 0.1           #   driven component is below load_below (in (0, 1)) times its
-//     after_time: 5e-4          #   peak over the rows so far (s, >= 0, < end_time; default 0)
+//     after_time: 5e-4          #   peak over the rows so far (s, >= 0, < end_time; default 0);
+//                               #   needs output_interval > 0
 //
 // Histories: {type: hold, value: V} | {type: linear_ramp | smooth_ramp, value: V, time: T}
 //          | {type: table, points: [[t0, v0], [t1, v1], ...]}

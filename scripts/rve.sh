@@ -3,7 +3,8 @@
 # macro stress-strain curves overlaid, the damage D at the states A (pre-peak), B (peak) and
 # C (post-peak) and its increment since the previous state, per mesh, and a table.
 # Run after the build (cmake -S . -B build -G Ninja && ninja -C build).
-# Usage: scripts/rve.sh [OUT_DIR] [coarse|fine|all|report]...   (default: results/rve coarse)
+# Usage: scripts/rve.sh [OUT_DIR] [coarse|fine|xfine|all|report]...   (default: results/rve coarse)
+# (xfine: the 0.0625 mm convergence check, 640k particles, ~20 minutes; `all` is coarse and fine)
 # The states are the scene's particle_snapshots (times in s, picked on the coarse curve: A at
 # 84 % of the peak load before it, B at the peak, C at 58 % after it); ecm-mpm writes
 # particles_t<time>.csv at each. Writes OUT_DIR/MESH/ (ecm-mpm's folder), OUT_DIR/stress_strain.png,
@@ -20,10 +21,10 @@ bin=${RVE_BIN:-./build/mpm/ecm-mpm}
 runs=()
 for w in "$@"; do
   case "$w" in
-    coarse | fine) runs+=("$w") ;;
+    coarse | fine | xfine) runs+=("$w") ;;
     all) runs+=(coarse fine) ;;
     report) ;;
-    *) echo "usage: scripts/rve.sh [OUT_DIR] [coarse|fine|all|report]..." >&2; exit 2 ;;
+    *) echo "usage: scripts/rve.sh [OUT_DIR] [coarse|fine|xfine|all|report]..." >&2; exit 2 ;;
   esac
 done
 [[ -x $bin ]] || { echo "error: $bin not built (cmake -S . -B build -G Ninja && ninja -C build)" >&2; exit 2; }
@@ -42,7 +43,7 @@ col() { head -1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }
 jnum() { grep -m1 "\"$2\"" "$1" | sed 's/.*: *//; s/[",]//g'; }
 
 rows=()
-for m in coarse fine; do
+for m in coarse fine xfine; do
   dir=$out/$m
   [[ -f $dir/summary.json ]] || continue
   h=$dir/history.csv
@@ -54,7 +55,7 @@ for m in coarse fine; do
   labels=(A B C D E F)
   states=""
   prev=""
-  ps=$(case $m in coarse) echo 0.22 ;; fine) echo 0.11 ;; esac)
+  ps=$(case $m in coarse) echo 0.22 ;; fine) echo 0.11 ;; xfine) echo 0.055 ;; esac)
   for k in "${!snaps[@]}"; do
     t=${snaps[$k]} l=${labels[$k]}
     f=$m/particles_t$t.csv
@@ -142,7 +143,18 @@ for r in "${rows[@]}"; do
   set -- $r
   printf "%-7s %-10s %12.4f %12.4g %12.4g %9.1f %9s %9s  %s\n" "$1" "$2" "$3" "$4" "$5" "$6" "$7" "$8" "${*:9}"
 done
-if [[ ${#rows[@]} -eq 2 ]]; then
-  awk -v a="$(set -- ${rows[0]}; echo "$3")" -v b="$(set -- ${rows[1]}; echo "$3")" 'BEGIN { printf "peak mean stress, fine against coarse: %+.2f %%\n", 100 * (b - a) / a }'
+# The peak of each finer mesh against the one before it; with three meshes (halving the cell
+# each time) also the observed order of convergence p = log2(e1 / e2) and the extrapolated peak
+# P_fine + (P_fine - P_coarse) / (2^p - 1) (Richardson).
+for ((i = 1; i < ${#rows[@]}; ++i)); do
+  awk -v na="$(set -- ${rows[$((i - 1))]}; echo "$1")" -v a="$(set -- ${rows[$((i - 1))]}; echo "$3")" \
+      -v nb="$(set -- ${rows[$i]}; echo "$1")" -v b="$(set -- ${rows[$i]}; echo "$3")" \
+      'BEGIN { printf "peak mean stress, %s against %s: %+.2f %%\n", nb, na, 100 * (b - a) / a }'
+done
+if [[ ${#rows[@]} -eq 3 ]]; then
+  awk -v a="$(set -- ${rows[0]}; echo "$3")" -v b="$(set -- ${rows[1]}; echo "$3")" -v c="$(set -- ${rows[2]}; echo "$3")" 'BEGIN {
+    if ((a - b) * (b - c) > 0) { p = log((a - b) / (b - c)) / log(2); x = c + (c - b) / (2 ^ p - 1)
+      printf "observed order of convergence %.2f, extrapolated peak %.4f MPa (finest mesh %+.2f %% from it)\n", p, x, 100 * (c - x) / x }
+    else print "no monotone convergence of the peak over the three meshes" }'
 fi
 echo "written: $out/summary.json $out/stress_strain.png $(cd "$out" && ls damage_*.png increment_*.png 2>/dev/null | sed "s|^|$out/|" | tr '\n' ' ')"

@@ -256,14 +256,21 @@ TEST(RveScene, ShippedScenesHoldTheSameSample) {
   const auto dir = std::filesystem::path(ECM_SOURCE_DIR) / "data" / "rve";
   const Scene coarse = loadSceneFile(dir / "rve-coarse.yaml");
   const Scene fine = loadSceneFile(dir / "rve-fine.yaml");
-  ASSERT_EQ(coarse.bodies.size(), fine.bodies.size());
-  for (std::size_t i = 0; i < coarse.bodies.size(); ++i) {
-    EXPECT_EQ(coarse.bodies[i].shape.center, fine.bodies[i].shape.center);
-    EXPECT_EQ(coarse.bodies[i].shape.radius, fine.bodies[i].shape.radius);
-    EXPECT_EQ(coarse.bodies[i].material, fine.bodies[i].material);
+  const Scene xfine = loadSceneFile(dir / "rve-xfine.yaml");  // the convergence check
+  for (const Scene* other : {&fine, &xfine}) {
+    ASSERT_EQ(coarse.bodies.size(), other->bodies.size());
+    for (std::size_t i = 0; i < coarse.bodies.size(); ++i) {
+      EXPECT_EQ(coarse.bodies[i].shape.center, other->bodies[i].shape.center);
+      EXPECT_EQ(coarse.bodies[i].shape.radius, other->bodies[i].shape.radius);
+      EXPECT_EQ(coarse.bodies[i].material, other->bodies[i].material);
+    }
+    EXPECT_EQ(other->solver.effectiveSize, coarse.solver.effectiveSize);
+    EXPECT_EQ(other->solver.shapeFunction, coarse.solver.shapeFunction);
+    EXPECT_EQ(other->endTime, coarse.endTime);
   }
   EXPECT_DOUBLE_EQ(coarse.grid.cellSize[0], 0.25);
   EXPECT_DOUBLE_EQ(fine.grid.cellSize[0], 0.125);
+  EXPECT_DOUBLE_EQ(xfine.grid.cellSize[0], 0.0625);
   EXPECT_EQ(coarse.solver.effectiveSize, EffectiveSizeRule::SquareRoot);
   for (const auto& m : coarse.materials) EXPECT_EQ(m.model, ModelKind::Enriched);
   EXPECT_GT(coarse.bodies.size(), 100u);

@@ -143,12 +143,13 @@ TEST(SceneYaml, CheckpointKeysAreReadAndChecked) {
 // stop_when names one of the scene's conditions, a fraction in (0, 1) and a time before end_time.
 TEST(SceneYaml, StopWhenKeysAreReadAndChecked) {
   EXPECT_FALSE(readScene(io::parseYaml(kScene, "scene.yaml")).stopWhen);
-  const Scene s = readScene(io::parseYaml(kScene + "stop_when: {condition: base, load_below: 0.1, after_time: 5e-4}\n", "scene.yaml"));
+  const std::string scene = kScene + "output_interval: 1e-5\n";  // line 10: stop_when is line 11
+  const Scene s = readScene(io::parseYaml(scene + "stop_when: {condition: base, load_below: 0.1, after_time: 5e-4}\n", "scene.yaml"));
   ASSERT_TRUE(s.stopWhen);
   EXPECT_EQ(s.stopWhen->condition, "base");
   EXPECT_EQ(s.stopWhen->loadBelow, 0.1);
   EXPECT_EQ(s.stopWhen->afterTime, 5e-4);
-  EXPECT_EQ(readScene(io::parseYaml(kScene + "stop_when: {condition: base, load_below: 0.5}\n", "scene.yaml")).stopWhen->afterTime,
+  EXPECT_EQ(readScene(io::parseYaml(scene + "stop_when: {condition: base, load_below: 0.5}\n", "scene.yaml")).stopWhen->afterTime,
             0.0);
   for (const auto& [tail, reason] : std::vector<std::pair<std::string, std::string>>{
            {"stop_when: {condition: top, load_below: 0.1}\n", "no condition is named 'top'"},
@@ -160,11 +161,15 @@ TEST(SceneYaml, StopWhenKeysAreReadAndChecked) {
            {"stop_when: {condition: base, load_below: 0.1, after_time: -1}\n", "after_time"},
            {"stop_when: {condition: base, load_below: 0.1, after_time: 2e-3}\n", "not before end_time"},
            {"stop_when: {condition: base, load_below: 0.1, every: 2}\n", "unknown key 'every'"}}) {
-    const io::InputError e = inputError([&] { readScene(io::parseYaml(kScene + tail, "scene.yaml")); });
-    EXPECT_EQ(e.line, 10) << tail;
-    expectContains(e.what(), "scene.yaml:10:");
+    const io::InputError e = inputError([&] { readScene(io::parseYaml(scene + tail, "scene.yaml")); });
+    EXPECT_EQ(e.line, 11) << tail;
+    expectContains(e.what(), "scene.yaml:11:");
     expectContains(e.what(), reason);
   }
+  const io::InputError e = inputError(
+      [&] { readScene(io::parseYaml(kScene + "stop_when: {condition: base, load_below: 0.1}\n", "scene.yaml")); });
+  expectContains(e.what(), "scene.yaml:10:");
+  expectContains(e.what(), "needs output_interval > 0");
 }
 
 }  // namespace
