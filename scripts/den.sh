@@ -13,6 +13,9 @@
 #                                           (the band's law on the whole point) or den-concrete-crackband-MESH.yaml
 #                                           (crack band: E_p from G_F / H); the scene is written to OUT_DIR/scenes/
 #         contrast                          smeared and crackband on the three meshes
+#         MESH-tail | tail                  the 4b scene of MESH pulled on to delta = 0.4 mm at the same
+#                                           22.2 mm/s, ended by stop_when once P < 10 % of its peak
+#                                           (the issue's end criterion; the fine one runs ~25 minutes)
 #         report                            no run: only the tables and plots of what is in OUT_DIR
 # Writes OUT_DIR/RUN/ (ecm-mpm's output folder per run, without VTU snapshots),
 # OUT_DIR/load_displacement.png (P against delta, enriched runs), OUT_DIR/contrast.png (all models),
@@ -28,7 +31,7 @@ shift || true
 [[ $# -gt 0 ]] || set -- coarse
 threads=${DEN_THREADS:-2}
 allRuns=(coarse medium fine coarse-halfrate coarse-quarterrate 4a-coarse coarse-smeared medium-smeared fine-smeared
-         coarse-crackband medium-crackband fine-crackband)
+         coarse-crackband medium-crackband fine-crackband coarse-tail medium-tail fine-tail)
 runs=()
 for w in "$@"; do
   case "$w" in
@@ -36,11 +39,12 @@ for w in "$@"; do
     halfrate) runs+=(coarse-halfrate) ;;
     quarterrate) runs+=(coarse-quarterrate) ;;
     contrast) runs+=(coarse-smeared medium-smeared fine-smeared coarse-crackband medium-crackband fine-crackband) ;;
+    tail) runs+=(coarse-tail medium-tail fine-tail) ;;
     report) ;;
-    coarse | medium | fine | coarse-halfrate | coarse-quarterrate | 4a-coarse | *-smeared | *-crackband)
+    coarse | medium | fine | coarse-halfrate | coarse-quarterrate | 4a-coarse | *-smeared | *-crackband | *-tail)
       [[ " ${allRuns[*]} " == *" $w "* ]] || { echo "error: unknown run '$w'" >&2; exit 2; }
       runs+=("$w") ;;
-    *) echo "usage: scripts/den.sh [OUT_DIR] [coarse|medium|fine|all|halfrate|quarterrate|4a-coarse|MESH-smeared|MESH-crackband|contrast|report]..." >&2; exit 2 ;;
+    *) echo "usage: scripts/den.sh [OUT_DIR] [coarse|medium|fine|all|halfrate|quarterrate|4a-coarse|MESH-smeared|MESH-crackband|contrast|MESH-tail|tail|report]..." >&2; exit 2 ;;
   esac
 done
 bin=${DEN_BIN:-./build/mpm/ecm-mpm}
@@ -55,6 +59,18 @@ sceneOf() {
     coarse | medium | fine) echo "data/den/den-4b-$run.yaml" ;;
     coarse-halfrate | coarse-quarterrate) echo "data/den/den-4b-$run.yaml" ;;
     4a-coarse) echo "data/den/den-4a-coarse.yaml" ;;
+    *-tail)
+      # The time line's last segment (delta 0.032 mm at 3.44004e-3 s, 22.2 mm/s) extended to
+      # 0.4 mm (2.000004e-2 s), the shear held to then, and the issue's end criterion as stop_when.
+      mkdir -p "$out/scenes"
+      sed -e "/@material/ s|{file: ../materials/|{file: $(realpath data/materials)/|" \
+          -e 's|^end_time: 0.00650004 |end_time: 0.02000004 |' \
+          -e 's|\[0.00650004, 0.1\]\]|[0.02000004, 0.4]]|' -e 's|\[0.00650004, 1\]\]|[0.02000004, 1]]|' \
+          -e "s|^name: den-4b-$mesh|name: den-4b-$run|" "data/den/den-4b-$mesh.yaml" >"$out/scenes/den-4b-$run.yaml"
+      echo "stop_when: {condition: top, load_below: 0.1, after_time: 0.00344004}   # P < 10 % of its peak, after delta = 0.032 mm" \
+        >>"$out/scenes/den-4b-$run.yaml"
+      grep -q "0.02000004, 0.4" "$out/scenes/den-4b-$run.yaml" || { echo "error: den-4b-$mesh.yaml's time line is not the one den.sh extends" >&2; return 1; }
+      echo "$out/scenes/den-4b-$run.yaml" ;;
     *)
       local material=den-concrete-smeared.yaml
       [[ $variant == crackband ]] && material=den-concrete-crackband-$mesh.yaml
@@ -92,9 +108,10 @@ for m in "${allRuns[@]}"; do
   cd_=$(col "$h" dissipated_Nmm)
   # Peak of P over the output rows (P = the top edge's reaction, N), delta there, the final
   # dissipated energy, and the largest kinetic / external work ratio while delta > 0 (and at the end).
-  read -r peak dpeak diss kmax kend <<<"$(awk -F, -v u="$cu" -v r="$cr" -v k="$ck" -v w="$cw" -v d="$cd_" '
-    NR > 1 { if ($r > p) { p = $r; dp = $u } ; if ($u > 0 && $w > 0 && $k / $w > km) km = $k / $w; last_k = $k; last_w = $w; di = $d }
-    END { printf "%.6g %.6g %.6g %.4g %.4g\n", p, dp, di, km, (last_w > 0 ? last_k / last_w : 0) }' "$h")"
+  read -r peak dpeak diss kmax kend dend pend <<<"$(awk -F, -v u="$cu" -v r="$cr" -v k="$ck" -v w="$cw" -v d="$cd_" '
+    NR > 1 { if ($r > p) { p = $r; dp = $u } ; if ($u > 0 && $w > 0 && $k / $w > km) km = $k / $w; last_k = $k; last_w = $w; di = $d
+             du = $u; pe = $r }
+    END { printf "%.6g %.6g %.6g %.4g %.4g %.6g %.4g\n", p, dp, di, km, (last_w > 0 ? last_k / last_w : 0), du, (p > 0 ? pe / p : 0) }' "$h")"
   # Point symmetry of the final damage about the panel centre (100, 100): each particle is paired
   # with the one seeded at its 180-degree image (seeds on a grid of spacing s = cell / 2; the
   # current positions differ from the seeds by far less than s / 2, and the geometry is point
@@ -119,7 +136,7 @@ for m in "${allRuns[@]}"; do
   parts=$(jnum "$dir/summary.json" particles)
   bpu=$(jnum "$dir/summary.json" bytes_per_particle_uncracked)
   bpc=$(jnum "$dir/summary.json" bytes_per_particle_cracked)
-  rows+=("$m $status $peak $dpeak $diss $kmax $kend $wall $parts $bpu $bpc $asym $meand $symc")
+  rows+=("$m $status $peak $dpeak $diss $kmax $kend $wall $parts $bpu $bpc $asym $meand $symc $dend $pend")
 
   # Damage map of this mesh.
   ps=$(case $m in coarse* | 4a-coarse) echo 0.35 ;; medium*) echo 0.18 ;; fine*) echo 0.09 ;; esac)
@@ -174,14 +191,14 @@ done
   sep=""
   for r in "${rows[@]}"; do
     set -- $r
-    [[ $1 == *-smeared || $1 == *-crackband ]] && continue  # in contrast.png
+    [[ $1 == *-smeared || $1 == *-crackband || $1 == *-tail ]] && continue  # in contrast.png, tail.png
     h=$out/$1/history.csv
     printf "%s'%s/history.csv' every ::1 using %s:%s with lines lw 2 title '%s (%s)'" "$sep" "$1" "$(col "$h" top_uy_mm)" "$(col "$h" top_ry_N)" "$1" "$2"
     sep=", \\"$'\n'"     "
   done
   echo
 } >"$out/load_displacement.gp"
-(cd "$out" && gnuplot load_displacement.gp) || echo "warning: load-displacement plot not drawn" >&2
+[[ -z $sep ]] || (cd "$out" && gnuplot load_displacement.gp) || echo "warning: load-displacement plot not drawn" >&2
 
 # All models together (enriched solid, smeared dashed, crack band dotted), when any contrast ran.
 if printf '%s\n' "${rows[@]}" | grep -q -e '-smeared ' -e '-crackband '; then
@@ -206,6 +223,32 @@ if printf '%s\n' "${rows[@]}" | grep -q -e '-smeared ' -e '-crackband '; then
     echo
   } >"$out/contrast.gp"
   (cd "$out" && gnuplot contrast.gp) || echo "warning: contrast plot not drawn" >&2
+fi
+
+# The long pulls (MESH-tail) together, with the 10 % line of each one's peak.
+if printf '%s\n' "${rows[@]}" | grep -q -e '-tail '; then
+  {
+    echo "# Redraw: cd $(realpath "$out") && gnuplot tail.gp"
+    echo "set terminal pngcairo size 900,600 enhanced font 'Sans,11' dashed"
+    echo "set output 'tail.png'"
+    echo "set datafile separator ','"
+    echo "set grid; set key top right"
+    echo "set title 'DEN 4b pulled until P < 10 % of its peak (stop\\_when), or to {/Symbol d} = 0.4 mm'"
+    echo "set xlabel '{/Symbol d} (mm)'; set ylabel 'P (N)'"
+    printf "plot "
+    sep=""
+    for r in "${rows[@]}"; do
+      set -- $r
+      [[ $1 == *-tail ]] || continue
+      color=$(case $1 in coarse*) echo '#1b9e77' ;; medium*) echo '#d95f02' ;; fine*) echo '#7570b3' ;; esac)
+      h=$out/$1/history.csv
+      printf "%s'%s/history.csv' every ::1 using %s:%s with lines lw 2 lc rgb '%s' title '%s (%s, end at %.3f mm)', \\\\\\n     %s with lines dt 2 lc rgb '%s' notitle" \
+        "$sep" "$1" "$(col "$h" top_uy_mm)" "$(col "$h" top_ry_N)" "$color" "$1" "$2" "${15}" "$(awk -v p="$3" 'BEGIN { print 0.1 * p }')" "$color"
+      sep=", \\"$'\n'"     "
+    done
+    echo
+  } >"$out/tail.gp"
+  (cd "$out" && gnuplot tail.gp) || echo "warning: tail plot not drawn" >&2
 fi
 
 # Mesh objectivity per model: spread (max - min) / mean of the peak load and of the dissipated
@@ -250,8 +293,8 @@ done
   for i in "${!rows[@]}"; do
     set -- ${rows[$i]}
     sep=$([[ $i -lt $((${#rows[@]} - 1)) ]] && echo "," || echo "")
-    printf '    "%s": {"status": "%s", "peak_load_N": %s, "delta_at_peak_mm": %s, "dissipated_Nmm": %s, "kinetic_over_external_max_tension": %s, "kinetic_over_external_end": %s, "wall_time_s": %s, "particles": %s, "bytes_per_particle_uncracked": %s, "bytes_per_particle_cracked": %s, "damage_point_symmetry_mean_abs_diff": %s, "mean_damage": %s, "cracked_with_cracked_image": %s}%s\n' \
-      "$1" "$2" "$3" "$4" "$5" "$6" "$7" "$8" "$9" "${10}" "${11}" "${12}" "${13}" "${14}" "$sep"
+    printf '    "%s": {"status": "%s", "peak_load_N": %s, "delta_at_peak_mm": %s, "dissipated_Nmm": %s, "kinetic_over_external_max_tension": %s, "kinetic_over_external_end": %s, "wall_time_s": %s, "particles": %s, "bytes_per_particle_uncracked": %s, "bytes_per_particle_cracked": %s, "damage_point_symmetry_mean_abs_diff": %s, "mean_damage": %s, "cracked_with_cracked_image": %s, "delta_at_end_mm": %s, "load_at_end_over_peak": %s}%s\n' \
+      "$1" "$2" "$3" "$4" "$5" "$6" "$7" "$8" "$9" "${10}" "${11}" "${12}" "${13}" "${14}" "${15}" "${16}" "$sep"
   done
   echo "  },"
   echo "  \"mesh_objectivity\": {"
@@ -270,10 +313,10 @@ done
   echo "  }"
   echo "}"
 } >"$out/summary.json"
-printf "\n%-17s %-10s %10s %10s %12s %10s %10s %9s %9s %8s %8s %8s %8s\n" run status "peak P(N)" "delta(mm)" "dissip(Nmm)" "KE/W tmax" "KE/W end" "time(s)" particles "B/pt" "B/crk" "sym|dD|" "sym crk"
+printf "\n%-17s %-10s %10s %10s %12s %10s %10s %9s %9s %8s %8s %8s %8s %9s %8s\n" run status "peak P(N)" "delta(mm)" "dissip(Nmm)" "KE/W tmax" "KE/W end" "time(s)" particles "B/pt" "B/crk" "sym|dD|" "sym crk" "end d(mm)" "P/Ppk"
 for r in "${rows[@]}"; do
   set -- $r
-  printf "%-17s %-10s %10.1f %10.4f %12.2f %10.3g %10.3g %9.1f %9s %8s %8s %8.3g %8.3g\n" "$1" "$2" "$3" "$4" "$5" "$6" "$7" "$8" "$9" "${10}" "${11}" "${12}" "${14}"
+  printf "%-17s %-10s %10.1f %10.4f %12.2f %10.3g %10.3g %9.1f %9s %8s %8s %8.3g %8.3g %9.4f %8.3f\n" "$1" "$2" "$3" "$4" "$5" "$6" "$7" "$8" "$9" "${10}" "${11}" "${12}" "${14}" "${15}" "${16}"
 done
 for f in "${families[@]}"; do
   set -- $f
@@ -286,5 +329,6 @@ done
 echo "(peak P and delta from the output rows of history.csv; KE/W: kinetic over external work,"
 echo " tmax: the largest while delta > 0 (tension phase), end: at the end;"
 echo " sym|dD|: mean |D(x) - D(rotated x)| over particles, 180 degrees about (100, 100);"
-echo " sym crk: fraction of cracked particles whose rotated image is cracked; spread: (max - min) / mean)"
-echo "written: $out/summary.json $out/load_displacement.png $(cd "$out" && ls contrast.png damage_*.png crack_*.png 2>/dev/null | sed "s|^|$out/|" | tr '\n' ' ')"
+echo " sym crk: fraction of cracked particles whose rotated image is cracked; spread: (max - min) / mean;"
+echo " end d, P/Ppk: delta at the last row and P there over the peak; the issue ends the pull at P/Ppk < 0.1)"
+echo "written: $out/summary.json $out/load_displacement.png $(cd "$out" && ls contrast.png tail.png damage_*.png crack_*.png 2>/dev/null | sed "s|^|$out/|" | tr '\n' ' ')"
