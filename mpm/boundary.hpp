@@ -1,8 +1,11 @@
 #pragma once
 // Boundary conditions and loads on node or particle sets picked by boxes (plain data).
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "mpm/geometry.hpp"
 #include "mpm/history.hpp"
@@ -44,6 +47,13 @@ struct NodeCondition {
     return c;
   }
 };
+
+// The index of the condition called `name`, if there is one.
+inline std::optional<std::size_t> findCondition(const std::vector<NodeCondition>& conditions, std::string_view name) {
+  const auto it = std::find_if(conditions.begin(), conditions.end(), [&](const NodeCondition& c) { return c.name == name; });
+  if (it == conditions.end()) return std::nullopt;
+  return static_cast<std::size_t>(it - conditions.begin());
+}
 
 enum class LoadTarget { Nodes, Particles };
 

@@ -192,10 +192,7 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
   std::size_t watched = 0;
   int watchedComponent = 0;
   if (scene.stopWhen) {
-    watched = static_cast<std::size_t>(
-        std::find_if(scene.conditions.begin(), scene.conditions.end(),
-                     [&](const NodeCondition& c) { return c.name == scene.stopWhen->condition; }) -
-        scene.conditions.begin());
+    watched = findCondition(scene.conditions, scene.stopWhen->condition).value();  // validated
     watchedComponent = drivenComponent(scene.conditions.at(watched));
   }
   auto watchStop = [&] {  // at an output row, before it is written

@@ -1,6 +1,5 @@
 #include "mpm/scene.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -76,9 +75,7 @@ void Scene::validate() const {
     }
   }
   if (stopWhen) {
-    const auto it = std::find_if(conditions.begin(), conditions.end(),
-                                 [&](const NodeCondition& c) { return c.name == stopWhen->condition; });
-    if (it == conditions.end()) fail("stop_when: no condition is named '" + stopWhen->condition + "'");
+    if (!findCondition(conditions, stopWhen->condition)) fail("stop_when: no condition is named '" + stopWhen->condition + "'");
     if (!(stopWhen->loadBelow > 0.0 && stopWhen->loadBelow < 1.0)) fail("stop_when: load_below must be in (0, 1)");
     if (!(stopWhen->afterTime >= 0.0 && std::isfinite(stopWhen->afterTime))) fail("stop_when: after_time must be >= 0 s");
     if (!(outputInterval > 0.0)) fail("stop_when is checked at the output rows: needs output_interval > 0");

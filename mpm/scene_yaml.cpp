@@ -1,6 +1,5 @@
 #include "mpm/scene_yaml.hpp"
 
-#include <algorithm>
 #include <map>
 
 #include "io/material_yaml.hpp"
@@ -251,8 +250,7 @@ CheckpointSettings readCheckpoint(const YamlMap& m) {
 StopWhen readStopWhen(const YamlMap& m, const std::vector<NodeCondition>& conditions) {
   StopWhen w;
   w.condition = m.get<std::string>("condition");
-  if (std::none_of(conditions.begin(), conditions.end(), [&](const NodeCondition& c) { return c.name == w.condition; }))
-    m.fail("condition", "no condition is named '" + w.condition + "'");
+  if (!findCondition(conditions, w.condition)) m.fail("condition", "no condition is named '" + w.condition + "'");
   w.loadBelow = m.get<double>("load_below", Range::open(0.0, 1.0));
   w.afterTime = m.getOr<double>("after_time", 0.0, Range::nonNegative());
   m.finish();

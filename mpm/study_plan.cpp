@@ -325,9 +325,7 @@ std::vector<PlannedRun> planStudy(const Study& study) {
           speed = std::max(speed, std::sqrt(pWaveModulus(mat.elastic) / mat.density));
         const Grid& g = run.scene->grid;
         run.estimatedSteps = run.scene->endTime * speed / (run.scene->solver.cfl * std::min(g.cellSize[0], g.cellSize[1]));
-        const auto& cs = run.scene->conditions;
-        if (!study.condition.empty() &&
-            std::none_of(cs.begin(), cs.end(), [&](const NodeCondition& x) { return x.name == study.condition; }))
+        if (!study.condition.empty() && !findCondition(run.scene->conditions, study.condition))
           throw InputError(study.file, study.referenceLine, what + "the scene has no condition '" + study.condition + "'");
         if (study.reference == ReferenceKind::BarVibration) {
           try {
