@@ -42,7 +42,10 @@ StepOutcome mixedControlStep(const PointUpdate& update, const Tangent& elastic, 
                              const Voigt& currentStress, const MixedTarget& target, const MixedControlSettings& s);
 inline StepOutcome mixedControlStep(const Material& material, MaterialPoint& point, const Voigt& currentStress,
                                     const MixedTarget& target, const EffectiveSize& size, const MixedControlSettings& s) {
-  return mixedControlStep([&](MaterialPoint& p, const Voigt& d) { return material.update(p, d, size); },
+  UpdateOptions options;
+  for (int i = 0; i < 3; ++i)
+    if (target.control[i] == Control::Stress) options.stressControlled |= 1u << i;
+  return mixedControlStep([&](MaterialPoint& p, const Voigt& d) { return material.update(p, d, size, options); },
                           material.stiffness(), point, currentStress, target, s);
 }
 

@@ -45,12 +45,15 @@ OpeningOutcome openingControlStep(const EnrichedBand& model, MaterialPoint& poin
   };
   // d sigma / d eps = a/(1-f); d sigma / d[u] = -f/((1-f) h) a N   (Eqs. (2)-(4))
   // d r / d eps = N^T a/(1-f); d r / d[u] = -K                     (Eqs. (6), (9))
+  // The bulk stress a (eps - f eps_L) / (1 - f) carries the round-off of a : eps amplified by
+  // 1 / (1 - f) (Eq. (4)): the tolerance cannot be tighter than that.
+  const double tol = tolerance + EnrichedBand::kRoundOff * (a * point.strain).norm() / (1.0 - f);
   const Tangent dSdE = a / (1.0 - f);
   const JumpMap dSdJ = -f / ((1.0 - f) * h) * a * n;
   Trial tr = evaluate(u);
   OpeningOutcome out;
   int it = 0;
-  for (; tr.residual.norm() > tolerance && it < maxIterations; ++it) {
+  for (; tr.residual.norm() > tol && it < maxIterations; ++it) {
     Mat g(dim, dim);
     Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 5> dStrain = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 5>::Zero(3, dim);
     Eigen::Matrix<double, 2, Eigen::Dynamic, 0, 2, 5> dJump = Eigen::Matrix<double, 2, Eigen::Dynamic, 0, 2, 5>::Zero(2, dim);
@@ -77,7 +80,7 @@ OpeningOutcome openingControlStep(const EnrichedBand& model, MaterialPoint& poin
   out.step.result.stress = tr.eq.stress;
   out.step.result.residual = tr.eq.residual.norm();
   out.step.result.iterations = it;
-  if (!(tr.residual.norm() <= tolerance)) {
+  if (!(tr.residual.norm() <= tol)) {
     out.step.result.status = UpdateStatus::NotConverged;
     return out;
   }

@@ -1,5 +1,6 @@
 #include "driver/point_driver.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -44,10 +45,15 @@ class Runner {
       const double s = static_cast<double>(i) / seg.increments;
       MixedTarget t;
       t.control = seg.control;
-      for (int c = 0; c < 3; ++c) {
-        if (seg.control[c] == Control::Strain) t.strainIncrement[c] = strain0[c] + s * (seg.target[c] - strain0[c]) - point_.strain[c];
-        else t.stress[c] = stress0[c] + s * (seg.target[c] - stress0[c]);
-      }
+      const auto aim = [&] {
+        for (int c = 0; c < 3; ++c) {
+          if (seg.control[c] == Control::Strain) t.strainIncrement[c] = strain0[c] + s * (seg.target[c] - strain0[c]) - point_.strain[c];
+          else t.stress[c] = stress0[c] + s * (seg.target[c] - stress0[c]);
+        }
+      };
+      aim();
+      if (!stepToOnsetInside(k, t)) return false;
+      aim();  // the rest of the increment, from the onset state
       const StepOutcome out = mixedControlStep(material_, point_, stress_, t, size_, settings_);
       if (out.result.status == UpdateStatus::SnapBack) {
         if (!snapBack(k, t)) return false;
@@ -59,26 +65,68 @@ class Runner {
     return true;
   }
 
-  // The point has no equilibrium branch for this increment under strain control.
+  // The elastic strain increment that meets the target (stress-controlled components solved
+  // with the elastic stiffness): the path of an intact point through the increment.
+  Voigt elasticIncrement(const MixedTarget& t) const {
+    Voigt d = t.strainIncrement;
+    std::vector<int> free;
+    for (int c = 0; c < 3; ++c)
+      if (t.control[c] == Control::Stress) free.push_back(c), d[c] = 0.0;
+    if (free.empty()) return d;
+    const Tangent& a = material_.stiffness();
+    const Voigt rhs = t.stress - stress_ - a * d;
+    const int m = static_cast<int>(free.size());
+    Eigen::MatrixXd block(m, m);
+    Eigen::VectorXd r(m);
+    for (int i = 0; i < m; ++i) {
+      r[i] = rhs[free[i]];
+      for (int j = 0; j < m; ++j) block(i, j) = a(free[i], free[j]);
+    }
+    const Eigen::VectorXd x = block.partialPivLu().solve(r);
+    for (int i = 0; i < m; ++i) d[free[i]] = x[i];
+    return d;
+  }
+
+  // An intact point whose increment crosses the onset of cracking first steps exactly to the
+  // onset, which gets a row of its own (the peak of a brittle point lies there).
+  bool stepToOnsetInside(int k, const MixedTarget& t) {
+    const BandDamageLaw* law = material_.enriched() ? &material_.enriched()->bandLaw()
+                               : material_.smeared() ? &material_.smeared()->law() : nullptr;
+    if (!law || point_.band || point_.integrity < 1.0) return true;
+    const Voigt d = elasticIncrement(t);
+    const std::optional<double> alpha = law->onsetFraction(point_.strain, d);
+    if (!alpha || *alpha >= 1.0 || *alpha <= 0.0) return true;
+    StepOutcome out;
+    out.strainIncrement = *alpha * d * (1.0 + 1e-13);  // just past the root: the onset is met
+    out.result = material_.update(point_, out.strainIncrement, size_);
+    out.dissipation = out.result.dissipation;
+    if (!out.converged()) return fail(out, k, 0);
+    record(k, increment_ + 1, out, false, false, true, kOnsetRow);
+    return true;
+  }
+
+  // A state of a trace, to step back to.
+  struct Saved {
+    MaterialPoint point;
+    Voigt stress;
+    double work, dissipation, lambda;
+  };
+  Saved save(double lambda) const { return {point_, stress_, work_, dissipation_, lambda}; }
+  void restore(const Saved& s) { point_ = s.point, stress_ = s.stress, work_ = s.work, dissipation_ = s.dissipation; }
+
+  // The increment found no stable equilibrium under strain control (the material's path test,
+  // docs/model.md). Trace the branch from the current state under opening control. If the
+  // controlled strain reaches the increment's target without turning back, there was no
+  // snap-back: the increment is recorded as a normal one. Otherwise the state where it turns
+  // back (the limit point) is the last stable state and gets a row; the run then stops, or
+  // (jump) follows the branch until the controlled strain reaches the target again and lands.
   bool snapBack(int k, const MixedTarget& t) {
     SnapBackReport& r = run_.snapBack;
-    const double before = principalStresses(stress_).first;
-    if (!r.detected) {
-      r.detected = true;
-      r.increment = increment_ + 1;
-      r.strain = point_.strain;
-      r.stressBefore = before;
-    }
     const EnrichedBand* model = material_.enriched();
-    if (scene_.onSnapBack == OnSnapBack::Stop || !model) {
-      std::ostringstream msg;
-      msg << "snap-back at increment " << increment_ + 1 << " (first principal stress " << before
-          << " MPa): no equilibrium branch continues under strain control; use opening control to trace it";
-      run_.failure = msg.str();
+    if (!model) {
+      run_.failure = "snap-back reported by a model without a band to trace it";
       return false;
     }
-    // Jump: follow the branch under opening control until the controlled strain reaches the
-    // increment's target again, then land there exactly (secant on the normal jump).
     OpeningTarget o;
     o.control = t.control;
     o.direction = t.strainIncrement;
@@ -91,7 +139,12 @@ class Runner {
         if (t.control[c] == Control::Stress) o.direction[c] = 0.0;
     }
     const double h = model->bandWidth();
+    unsigned mask = 0;
+    for (int c = 0; c < 3; ++c)
+      if (t.control[c] == Control::Stress) mask |= 1u << c;
     double lambda = 0.0, dJump = 1e-4 * h;
+    bool turned = false;
+    Saved before = save(lambda);
     for (int guard = 0; guard < 100000; ++guard) {
       MaterialPoint trial = point_;
       o.normalJump = point_.band->normalJump() + dJump;
@@ -101,7 +154,38 @@ class Runner {
         if (dJump < 1e-14 * h) return fail(out.step, k, -1);
         continue;
       }
+      if (!turned) {
+        // The limit point lies in this step if the path to the trial state stops being stable
+        // (its first unstable state), or, failing that test, if the load factor turned back.
+        const std::optional<double> t = model->firstUnstableOnPath(
+            *point_.band, model->bandLaw().loadingSurface(point_.band->integrity), trial.band->jump, mask);
+        if (t || out.loadFactor < 0.0) {
+          turned = true;
+          const double start = point_.band->normalJump();
+          const bool ok = t ? stepToLimit(k, o, start + *t * (o.normalJump - start), lambda)
+                            : limitPoint(k, o, before, o.normalJump, lambda);
+          if (!ok) return false;
+          if (!r.detected) {
+            r.detected = true;
+            r.increment = increment_ + 1;
+            r.strain = point_.strain;
+            r.stressBefore = principalStresses(stress_).first;
+          }
+          if (scene_.onSnapBack == OnSnapBack::Stop) {
+            std::ostringstream msg;
+            msg << "snap-back at increment " << increment_ + 1 << " (first principal stress "
+                << principalStresses(stress_).first
+                << " MPa at the last stable state): no stable branch continues under strain control; use opening control to trace it";
+            run_.failure = msg.str();
+            return false;
+          }
+          before = save(lambda);
+          dJump = 1e-4 * h;
+          continue;
+        }
+      }
       if (lambda + out.loadFactor < 1.0) {
+        before = save(lambda);
         lambda += out.loadFactor;
         point_ = trial;
         accumulate(out.step);
@@ -125,13 +209,70 @@ class Runner {
       }
       point_ = landed;
       accumulate(best.step);
-      r.stressAfter = principalStresses(stress_).first;
-      r.jumped = true;
-      record(k, ++increment_, best.step, true, true, false);
+      if (turned && r.increment == increment_ + 1) {
+        r.stressAfter = principalStresses(stress_).first;
+        r.jumped = true;
+      }
+      record(k, ++increment_, best.step, true, turned, false);
       return true;
     }
     run_.failure = "snap-back: the stable branch was not reached";
     return false;
+  }
+
+  // Step from the current state to the limit point at normal jump `limit` and give it a row
+  // (a limit point at the current state marks the row already written there).
+  bool stepToLimit(int k, OpeningTarget o, double limit, double& lambda) {
+    if (limit - point_.band->normalJump() < 1e-9 * material_.enriched()->bandWidth()) {
+      if (!run_.history.empty()) run_.history.back().event |= kLastStableRow;
+      return true;
+    }
+    MaterialPoint end = point_;
+    o.normalJump = limit;
+    const OpeningOutcome out = openingControlStep(*material_.enriched(), end, o, settings_.tolerance);
+    if (!out.step.converged()) return fail(out.step, k, -1);
+    point_ = end;
+    lambda += out.loadFactor;
+    accumulate(out.step);
+    record(k, increment_ + 1, out.step, true, false, false, kLastStableRow);
+    return true;
+  }
+
+  // The traced load factor turned back between the state `from` and the normal jump `past`:
+  // find its maximum (golden section on the normal jump), the limit point, and step there. A
+  // limit point at `from` itself marks the row already written there.
+  bool limitPoint(int k, OpeningTarget o, const Saved& from, double past, double& lambda) {
+    const EnrichedBand* model = material_.enriched();
+    const double start = from.point.band->normalJump();
+    const auto loadFactor = [&](double jump, OpeningOutcome* outcome, MaterialPoint* end) {
+      MaterialPoint m = from.point;
+      o.normalJump = jump;
+      const OpeningOutcome out = openingControlStep(*model, m, o, settings_.tolerance);
+      if (outcome) *outcome = out, *end = m;
+      return out.step.converged() ? from.lambda + out.loadFactor : -INFINITY;
+    };
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    double lo = start, hi = past;
+    double j1 = hi - g * (hi - lo), j2 = lo + g * (hi - lo);
+    double l1 = loadFactor(j1, nullptr, nullptr), l2 = loadFactor(j2, nullptr, nullptr);
+    for (int it = 0; it < 80 && hi - lo > 1e-12 * model->bandWidth(); ++it) {
+      if (l1 > l2) hi = j2, j2 = j1, l2 = l1, j1 = hi - g * (hi - lo), l1 = loadFactor(j1, nullptr, nullptr);
+      else lo = j1, j1 = j2, l1 = l2, j2 = lo + g * (hi - lo), l2 = loadFactor(j2, nullptr, nullptr);
+    }
+    restore(from);
+    const double best = 0.5 * (lo + hi);
+    OpeningOutcome out;
+    MaterialPoint end;
+    if (best - start < 1e-9 * model->bandWidth() || !(loadFactor(best, &out, &end) > from.lambda)) {
+      lambda = from.lambda;
+      if (!run_.history.empty()) run_.history.back().event |= kLastStableRow;
+      return true;
+    }
+    point_ = end;
+    lambda = from.lambda + out.loadFactor;
+    accumulate(out.step);
+    record(k, increment_ + 1, out.step, true, false, false, kLastStableRow);
+    return true;
   }
 
   bool openingSegment(int k, const Segment& seg) {
@@ -185,7 +326,7 @@ class Runner {
     out.strainIncrement = step;
     out.dissipation = out.result.dissipation;
     if (!out.converged() || !point_.band) return fail(out, k, 0);
-    record(k, ++increment_, out, false, false);
+    record(k, ++increment_, out, false, false, true, kOnsetRow);
     return true;
   }
 
@@ -205,7 +346,8 @@ class Runner {
     stress_ = out.result.stress;
   }
 
-  void record(int k, int inc, const StepOutcome& out, bool opening, bool jump, bool accumulateStep = true) {
+  void record(int k, int inc, const StepOutcome& out, bool opening, bool jump, bool accumulateStep = true,
+              unsigned event = 0) {
     if (accumulateStep && inc > 0) accumulate(out);
     HistoryRow r;
     r.increment = inc;
@@ -220,6 +362,7 @@ class Runner {
     r.substeps = out.substeps;
     r.openingControl = opening;
     r.snapBackJump = jump;
+    r.event = event;
     const Tangent& c = compliance_;
     if (point_.band) {
       const BandState& b = *point_.band;
@@ -266,6 +409,7 @@ PointSummary summarise(const PointScene& scene, const PointRun& run) {
   s.effectiveSize = scene.effectiveSize;
   for (const HistoryRow& r : run.history) {
     const double p = principalStresses(r.stress).first;
+    if ((r.event & kOnsetRow) && s.onsetStress == 0.0) s.onsetStress = p;
     if (p > s.peakStress) {
       s.peakStress = p;
       s.strainAtPeak = firstPrincipalStrain(r.strain);

@@ -44,13 +44,20 @@ struct HistoryRow {
   int substeps = 1;
   bool openingControl = false;
   bool snapBackJump = false;  // this row is the stable state reached after a snap-back
+  unsigned event = 0;         // RowEvent bits: a state inside an increment with a row of its own
+};
+
+// Rows of their own inside an increment (the `event` column of history.csv, bits).
+enum RowEvent : unsigned {
+  kOnsetRow = 1,       // the exact onset of cracking (Eq. (12) with D = 0)
+  kLastStableRow = 2,  // the last stable state before a snap-back: the limit point of the path
 };
 
 struct SnapBackReport {
   bool detected = false;
-  int increment = -1;          // first increment that had no equilibrium branch under strain control
-  Voigt strain = Voigt::Zero();// strain before that increment
-  double stressBefore = 0.0;   // first principal stress before it (MPa)
+  int increment = -1;          // first increment that had no stable path under strain control
+  Voigt strain = Voigt::Zero();// strain at the last stable state (the limit point inside that increment)
+  double stressBefore = 0.0;   // first principal stress there (MPa)
   double stressAfter = 0.0;    // on the stable branch at the increment's target strain (if jumped)
   bool jumped = false;
 };
@@ -63,6 +70,7 @@ struct PointRun {
 };
 
 struct PointSummary {
+  double onsetStress = 0.0;     // first principal stress at the onset of cracking (MPa; 0: no onset)
   double peakStress = 0.0;      // max first principal stress (MPa)
   double strainAtPeak = 0.0;    // first principal strain at the peak
   double dissipation = 0.0;     // per unit volume (MPa)

@@ -16,12 +16,12 @@ void writeHistoryCsv(const PointRun& run, const std::filesystem::path& file) {
   io::CsvWriter csv(file, {"increment", "segment", "eps_xx", "eps_yy", "gamma_xy", "sig_xx", "sig_yy", "sig_xy",
                            "damage", "integrity", "jump_n", "jump_t", "opening", "traction_n", "normal_x", "normal_y",
                            "volume_fraction", "work", "dissipation", "iterations", "substeps", "opening_control",
-                           "snapback_jump"});
+                           "snapback_jump", "event"});
   for (const HistoryRow& r : run.history)
     csv.row({double(r.increment), double(r.segment), r.strain[0], r.strain[1], r.strain[2], r.stress[0], r.stress[1],
              r.stress[2], r.damage, r.integrity, r.normalJump, r.slidingJump, r.opening, normalTraction(r),
              r.crackNormal[0], r.crackNormal[1], r.volumeFraction, r.work, r.dissipation, double(r.iterations),
-             double(r.substeps), r.openingControl ? 1.0 : 0.0, r.snapBackJump ? 1.0 : 0.0});
+             double(r.substeps), r.openingControl ? 1.0 : 0.0, r.snapBackJump ? 1.0 : 0.0, double(r.event)});
   csv.close();
 }
 
@@ -33,6 +33,7 @@ nlohmann::json pointSummaryJson(const PointScene& scene, const PointRun& run) {
   j["model"] = toString(scene.material.model);
   j["material"] = scene.material.name;
   j["H"] = scene.effectiveSize;
+  if (s.onsetStress > 0.0) j["onset_stress"] = s.onsetStress;
   j["peak_stress"] = s.peakStress;
   j["strain_at_peak"] = s.strainAtPeak;
   j["dissipated_energy_per_volume"] = s.dissipation;
@@ -70,14 +71,17 @@ void writePointPlots(const PointScene& scene, const std::filesystem::path& dir) 
   ss.yLabel = "stress (MPa)";
   ss.series = {{"history.csv", "3:6", "", "sig_xx", "lines lw 2"},
                {"history.csv", "3:7", "", "sig_yy", "lines"},
-               {"history.csv", "3:8", "", "sig_xy", "lines"}};
+               {"history.csv", "3:8", "", "sig_xy", "lines"},
+               {"history.csv", "(int($24) & 1 ? $3 : 1/0):6", "", "onset", "points pt 7 ps 1.5"},
+               {"history.csv", "(int($24) & 2 ? $3 : 1/0):6", "", "last stable state before a snap-back", "points pt 6 ps 2"}};
   io::renderPlot(ss, dir / "stress_strain.png");
   io::PlotSpec to;
   to.title = scene.name + ": traction-opening of the band";
   to.xLabel = "inelastic opening w = h (eps_L - C sigma)_nn (mm)";
   to.yLabel = "normal traction n.sigma.n (MPa)";
   to.series = {{"history.csv", "($9 > 0 ? $13 : 1/0):14", "", "traction vs opening w", "lines lw 2"},
-               {"history.csv", "($9 > 0 ? $11 : 1/0):14", "", "traction vs jump [u].n", "lines dt 2"}};
+               {"history.csv", "($9 > 0 ? $11 : 1/0):14", "", "traction vs jump [u].n", "lines dt 2"},
+               {"history.csv", "(int($24) & 2 ? $13 : 1/0):14", "", "last stable state before a snap-back", "points pt 6 ps 2"}};
   io::renderPlot(to, dir / "traction_opening.png");
 }
 

@@ -74,9 +74,9 @@ PointScene readPointScene(const YamlMap& map) {
         map.getEnum("hypothesis", {"plane_stress", "plane_strain"}) == "plane_stress" ? Hypothesis::PlaneStress
                                                                                        : Hypothesis::PlaneStrain;
   s.effectiveSize = map.get<double>("effective_size", Range::positive());
-  if (s.material.model == ModelKind::Enriched && !(s.effectiveSize > s.material.bandWidth))
-    map.fail("effective_size", "H = " + std::to_string(s.effectiveSize) + " mm must exceed the band width h = " +
-                                   std::to_string(s.material.bandWidth) + " mm (f = h/H < 1, Eq. (1))");
+  if (s.material.model == ModelKind::Enriched)
+    if (const std::string problem = effectiveSizeProblem(s.effectiveSize, s.material.bandWidth); !problem.empty())
+      map.fail("effective_size", problem);
   s.onSnapBack = map.getEnumOr("on_snapback", {"jump", "stop"}, "jump") == "jump" ? OnSnapBack::Jump : OnSnapBack::Stop;
   s.relativeTolerance = map.getOr<double>("tolerance", 1e-8, Range{0.0, 1e-3, false, true});
   s.substepLevels = map.getOr<int>("substep_levels", 10, Range::closed(0.0, 20.0));

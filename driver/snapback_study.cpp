@@ -93,8 +93,9 @@ SnapBackStudy loadSnapBackStudy(const std::filesystem::path& file) {
   if (!(s.material.fractureEnergy > 0.0))
     map.fail("material", "the material needs fracture_energy (N/mm): the smeared crack is regularised to it");
   s.effectiveSizes = map.getVector("effective_sizes", 0, io::Range::positive());
-  for (double h : s.effectiveSizes)
-    if (!(h > s.material.bandWidth)) map.fail("effective_sizes", "every H must exceed the band width h");
+  for (double size : s.effectiveSizes)
+    if (const std::string problem = effectiveSizeProblem(size, s.material.bandWidth); !problem.empty())
+      map.fail("effective_sizes", problem);
   s.strainIncrements = map.getOr<int>("strain_increments", 600, io::Range{10.0, 1e7, true, true});
   s.opening = map.getOr<double>("opening", 0.5, io::Range::positive());
   s.openingIncrements = map.getOr<int>("opening_increments", 1000, io::Range{10.0, 1e7, true, true});

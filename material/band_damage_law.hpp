@@ -2,6 +2,7 @@
 // The band's damage law, Eqs. (11)-(13): sigma_L = (1 - D) a_L : eps_L, damage driven by the
 // positive part of the effective stress, F(D) of Eq. (13), D irreversible.
 #include <cmath>
+#include <optional>
 
 #include "material/damage_function.hpp"
 #include "material/linear_elastic.hpp"
@@ -69,7 +70,10 @@ class BandDamageLaw {
   double dissipation(double xOld, double xNew, double fOld, double fNew) const {
     return dissipationBetween(law_, xOld, xNew, fOld, fNew);
   }
-  double onsetDrivingForce() const { return onsetY_; }  // F(D = 0) = f_t'^2 / (2E)
+  double onsetDrivingForce() const { return onsetY_; }
+  // Fraction alpha in [0, 1] of a strain increment at which the undamaged law first meets the
+  // onset criterion, Eq. (12) with D = 0; nullopt if it is not met within the increment.
+  std::optional<double> onsetFraction(const Voigt& strain, const Voigt& strainIncrement) const;  // F(D = 0) = f_t'^2 / (2E)
   const DamageLawParams& law() const { return law_; }
   const Tangent& stiffness() const { return stiffness_; }
   const Tangent& compliance() const { return compliance_; }

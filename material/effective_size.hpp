@@ -20,6 +20,16 @@ struct EffectiveSize {
 
   static EffectiveSize fixed(double h) { return {EffectiveSizeRule::Fixed, h, 0.0, 0.0}; }
 
+  // The smallest H over all crack directions.
+  double smallest() const {
+    switch (rule) {
+      case EffectiveSizeRule::Fixed: return value;
+      case EffectiveSizeRule::SquareRoot: return std::sqrt(cellWidth * cellHeight);
+      case EffectiveSizeRule::Oriented: return cellWidth * cellHeight / std::hypot(cellWidth, cellHeight);  // diagonal chord
+    }
+    return value;
+  }
+
   // H for a crack with unit normal n.
   double operator()(const Vec2& n) const {
     switch (rule) {

@@ -1,8 +1,10 @@
 #include "material/enriched_band.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 #include "material/driving_force.hpp"
 #include "material/parameter_check.hpp"
@@ -15,7 +17,25 @@ namespace {
 // has a locally unique, stable solution branch.
 bool positiveDefinite(const Mat2& k) { return k.determinant() > 0.0 && k.trace() > 0.0; }
 
+// The smaller real part of the eigenvalues of K (Eq. (9)): positive exactly where
+// positiveDefinite() holds, and continuous, so it can be minimised along a path.
+double smallestRealEigenvalue(const Mat2& k) {
+  const double half = 0.5 * k.trace();
+  const double disc = half * half - k.determinant();
+  return disc > 0.0 ? half - std::sqrt(disc) : half;
+}
+
 }  // namespace
+
+std::string effectiveSizeProblem(double effectiveSize, double bandWidth) {
+  if (effectiveSize >= minimumEffectiveSize(bandWidth)) return "";
+  std::ostringstream msg;
+  msg.precision(10);
+  msg << "H = " << effectiveSize << " mm is below the smallest effective size h (1 + " << kMinimumSizeMargin
+      << ") = " << minimumEffectiveSize(bandWidth) << " mm for the band width h = " << bandWidth
+      << " mm: a bulk thinner than that (1 - f < 1e-6, Eq. (1)) leaves its stress to round-off (docs/model.md)";
+  return msg.str();
+}
 
 void EnrichedParams::validate() const {
   band.validate();
@@ -34,30 +54,7 @@ double EnrichedBand::intactDrivingForce(const Voigt& strain) const {
 }
 
 std::optional<double> EnrichedBand::onsetFraction(const Voigt& strain, const Voigt& increment) const {
-  const double yOnset = law_.onsetDrivingForce();
-  auto excess = [&](double a) { return intactDrivingForce(strain + a * increment) - yOnset; };
-  double gb = excess(1.0);
-  if (gb < 0.0) return std::nullopt;
-  double ga = excess(0.0);
-  if (ga >= 0.0) return 0.0;
-  // Illinois regula falsi on the piecewise-quadratic Y(alpha) (MODEL-NOTES pitfall 1).
-  double a = 0.0, b = 1.0;
-  int side = 0;
-  for (int it = 0; it < 200 && b - a > 1e-15; ++it) {
-    const double c = (a * gb - b * ga) / (gb - ga);
-    const double gc = excess(c);
-    if (std::abs(gc) <= 1e-15 * yOnset) return c;
-    if (gc < 0.0) {
-      a = c, ga = gc;
-      if (side == -1) gb *= 0.5;
-      side = -1;
-    } else {
-      b = c, gb = gc;
-      if (side == +1) ga *= 0.5;
-      side = +1;
-    }
-  }
-  return b;  // the end of the bracket at which the criterion is met
+  return law_.onsetFraction(strain, increment);
 }
 
 BandEquilibrium EnrichedBand::equilibrium(const BandState& b, const BandDamageLaw::LoadingSurface& surface,
@@ -89,7 +86,7 @@ Tangent EnrichedBand::consistentTangent(const BandState& b, const Mat2& jacobian
 
 UpdateResult EnrichedBand::updateCracked(BandState& b, Voigt& strain, const Voigt& increment,
                                          UpdateOptions options) const {
-  UpdateResult r = predictCorrect(b, strain, increment, options.tangent);
+  UpdateResult r = predictCorrect(b, strain, increment, options.tangent, options.stressControlled);
   if (r.converged() || options.snapBack != SnapBackPolicy::Release) return r;
   if (r.status == UpdateStatus::SnapBack) return releaseSnapBack(b, strain, increment, options.tangent);
   // Newton on the envelope can stall without meeting an unstable state it could name: where the
@@ -170,12 +167,14 @@ UpdateResult EnrichedBand::releaseSnapBack(BandState& b, Voigt& strain, const Vo
   return res;
 }
 
-UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent) const {
+UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent,
+                                          unsigned stressControlled) const {
   const Voigt eps = strain + increment;
   UpdateResult res;
   const Voigt aEps = stiffness() * eps;
-  // Relative to f_t'; at enormous strains the floor is the round-off of a : eps itself.
-  const double tol = kRelativeTolerance * tensileStrength() + kRoundOff * aEps.norm();
+  // Relative to f_t'; at enormous strains the floor is the round-off of a : eps itself, which the
+  // bulk stress a (eps - f eps_L) / (1 - f) of Eq. (4) amplifies by 1 / (1 - f).
+  const double tol = kRelativeTolerance * tensileStrength() + kRoundOff * aEps.norm() / (1.0 - b.volumeFraction);
 
   // 1. Elastic predictor: with the band's damage frozen, Eq. (6) is linear in [u] and the secant
   //    K of Eq. (9) (a_L = x0 a, always positive definite) solves it in one step. If the band
@@ -255,23 +254,121 @@ UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voi
       return res;
     }
     eq = equilibrium(b, surface, eps, jump, false);  // neutral: the secant K, damage unchanged
-  } else if (!positiveDefinite(eq.jacobian)) {
+  } else if (!(stabilityMargins(b, eq.jacobian, stressControlled).minCoeff() > -kMarginFloor)) {
     res.status = UpdateStatus::SnapBack;  // a root on the unstable branch
     return res;
   }
-  // A large loading increment may have jumped over a snap-back: the branch between the two
-  // converged states must stay stable (K of Eq. (9) positive) all along, checked at samples.
-  if ((jump - b.jump).norm() > kJumpCheck * bandWidth_) {
-    for (int k = 1; k < kJumpSamples; ++k) {
-      const Vec2 mid = b.jump + (double(k) / kJumpSamples) * (jump - b.jump);
-      const BandEquilibrium m = equilibrium(b, envelope, eps, mid, true);
-      if (m.band.loading && !positiveDefinite(m.jacobian)) {
-        res.status = UpdateStatus::SnapBack;
-        return res;
+  // The root is stable; the path to it must be too (docs/model.md, "Snap-back on the path"): a
+  // loading increment whose jump is longer than kJumpCheck h may have passed a limit point.
+  if ((jump - b.jump).norm() > kJumpCheck * bandWidth_ && !bandHasFailed(b) &&
+      firstUnstableOnPath(b, surface, jump, stressControlled)) {
+    res.status = UpdateStatus::SnapBack;
+    return res;
+  }
+  return finishUpdate(b, strain, eps, jump, eq, surface.threshold, tol, tangent, res);
+}
+
+Vec2 EnrichedBand::stabilityMargins(const BandState& b, const Mat2& jacobian, unsigned stressControlled) const {
+  // K scaled by its intact secant value mu (f / (1 - f) + 1) / h.
+  const double kMargin =
+      smallestRealEigenvalue(jacobian) * bandWidth_ / (shearModulus_ * (b.volumeFraction / (1.0 - b.volumeFraction) + 1.0));
+  if (stressControlled == 0 || !(kMargin > 0.0)) return {kMargin, 1.0};
+  // Mixed control: the Jacobian of (jump, stress-controlled strains) has det K det D_ss
+  // (Schur complement, D of Eq. (10)); D_ss scaled by E.
+  const Tangent d = consistentTangent(b, jacobian);
+  int idx[3], m = 0;
+  for (int i = 0; i < 3; ++i)
+    if (stressControlled & (1u << i)) idx[m++] = i;
+  double dMargin = 0.0;
+  if (m == 1) {
+    dMargin = d(idx[0], idx[0]);
+  } else if (m == 2) {
+    Mat2 block;
+    block << d(idx[0], idx[0]), d(idx[0], idx[1]), d(idx[1], idx[0]), d(idx[1], idx[1]);
+    dMargin = smallestRealEigenvalue(block);
+  } else {
+    dMargin = d.eigenvalues().real().minCoeff();
+  }
+  return {kMargin, dMargin / law_.law().youngsModulus};
+}
+
+bool EnrichedBand::bandHasFailed(const BandState& b) const {
+  const JumpMap n = jumpToStrain(b.crackNormal);
+  const Vec2 traction = b.integrity * (n.transpose() * (stiffness() * (b.onsetStrain + n * b.jump / bandWidth_)));  // Eq. (11)
+  return traction.norm() < kFailedTraction * tensileStrength();
+}
+
+Mat2 EnrichedBand::loadingJacobian(const BandState& b, const BandDamageLaw::LoadingSurface& surface, const Vec2& jump) const {
+  const JumpMap n = jumpToStrain(b.crackNormal);
+  const BandResponse band = law_.evaluate(surface, b.onsetStrain + n * jump / bandWidth_, true);  // Eq. (3)
+  return n.transpose() * (b.volumeFraction / (1.0 - b.volumeFraction) * stiffness() + band.tangent) * n / bandWidth_;  // Eq. (9)
+}
+
+std::optional<double> EnrichedBand::firstUnstableOnPath(const BandState& b, const BandDamageLaw::LoadingSurface& surface,
+                                                        const Vec2& jump, unsigned stressControlled) const {
+  // States along the straight jump segment from the converged state b to `jump`, the band on
+  // its loading surface (elastic inside it, loading beyond it): the equilibrium path itself
+  // when the sliding jump does not change. K of Eq. (9) and D of Eq. (10) depend on the jump only.
+  const Vec2 delta = jump - b.jump;
+  const auto margins = [&](double t) {
+    return stabilityMargins(b, loadingJacobian(b, surface, b.jump + t * delta), stressControlled);
+  };
+  // The first zero of margin i between a stable fraction and an unstable one (bisection).
+  const auto crossing = [&](int i, double stable, double unstable) {
+    for (int it = 0; it < 50 && unstable - stable > 1e-14; ++it) {
+      const double mid = 0.5 * (stable + unstable);
+      (margins(mid)[i] > -kMarginFloor ? stable : unstable) = mid;
+    }
+    return unstable;
+  };
+  // Samples: every kJumpCheck h (at least kJumpSamples, at most kMaxPathSamples), and
+  // geometrically closer towards the start, where the softening branch turns fastest.
+  const double length = delta.norm();
+  const int uniform = std::clamp(static_cast<int>(std::ceil(length / (kJumpCheck * bandWidth_))), kJumpSamples,
+                                 kMaxPathSamples);
+  std::vector<double> ts;
+  ts.reserve(uniform + 400);
+  for (int k = 0; k <= uniform; ++k) ts.push_back(double(k) / uniform);
+  for (double t = kFirstGeometricSample; t < 1.0 / uniform; t *= kGeometricRatio) ts.push_back(t);
+  std::sort(ts.begin(), ts.end());
+  const int count = static_cast<int>(ts.size());
+  std::vector<Vec2> sampled(count);
+  for (int k = 0; k < count; ++k) {
+    sampled[k] = margins(ts[k]);
+    for (int i = 0; i < 2; ++i)
+      if (!(sampled[k][i] > -kMarginFloor)) return k == 0 ? 0.0 : crossing(i, ts[k - 1], ts[k]);
+  }
+  // An unstable stretch narrower than the sampling lies next to a local minimum of its margin
+  // among the samples: golden-section search around the smallest few of them.
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  std::optional<double> first;
+  for (int i = 0; i < (stressControlled ? 2 : 1); ++i) {
+    std::vector<int> minima;
+    for (int k = 0; k < count; ++k)
+      if ((k == 0 || sampled[k][i] <= sampled[k - 1][i]) && (k + 1 == count || sampled[k][i] <= sampled[k + 1][i]))
+        minima.push_back(k);
+    std::sort(minima.begin(), minima.end(), [&](int a, int b) { return sampled[a][i] < sampled[b][i]; });
+    if (minima.size() > kRefinedMinima) minima.resize(kRefinedMinima);
+    const auto margin = [&](double t) { return margins(t)[i]; };
+    for (int k : minima) {
+      const double left = ts[std::max(0, k - 1)];
+      double lo = left, hi = ts[std::min(count - 1, k + 1)];
+      double t1 = hi - g * (hi - lo), t2 = lo + g * (hi - lo), m1 = margin(t1), m2 = margin(t2);
+      for (int it = 0; it < 50 && hi - lo > 1e-12 * (ts[std::min(count - 1, k + 1)] - left); ++it) {
+        if (!(m1 > -kMarginFloor) || !(m2 > -kMarginFloor)) {
+          const double t = crossing(i, left, !(m1 > -kMarginFloor) ? t1 : t2);
+          first = first ? std::min(*first, t) : t;
+          break;
+        }
+        if (m1 < m2) {
+          hi = t2, t2 = t1, m2 = m1, t1 = hi - g * (hi - lo), m1 = margin(t1);
+        } else {
+          lo = t1, t1 = t2, m1 = m2, t2 = lo + g * (hi - lo), m2 = margin(t2);
+        }
       }
     }
   }
-  return finishUpdate(b, strain, eps, jump, eq, surface.threshold, tol, tangent, res);
+  return first;
 }
 
 UpdateResult EnrichedBand::finishUpdate(BandState& b, Voigt& strain, const Voigt& eps, const Vec2& jump,
@@ -307,11 +404,8 @@ UpdateResult EnrichedBand::updateIntactSlow(Voigt& strain, const Voigt& incremen
   b.onsetStrain = strain + *alpha * increment;
   b.crackNormal = canonicalNormal(principalStresses(stiffness() * b.onsetStrain).firstDirection);
   const double effectiveSize = size(b.crackNormal);
-  if (!(effectiveSize > bandWidth_)) {
-    std::ostringstream msg;
-    msg << "effective size H = " << effectiveSize << " mm must exceed the band width h = " << bandWidth_ << " mm";
-    throw ParameterError(msg.str());
-  }
+  if (const std::string problem = effectiveSizeProblem(effectiveSize, bandWidth_); !problem.empty())
+    throw ParameterError("effective size " + problem);
   b.volumeFraction = bandWidth_ / effectiveSize;  // Eq. (1)
   Voigt cracked = b.onsetStrain;
   r = updateCracked(b, cracked, (1.0 - *alpha) * increment, options);

@@ -4,11 +4,20 @@
 // f = h/H (volumeFraction). The band obeys the damage law of Eqs. (11)-(13); traction
 // continuity (6) couples the phases. Before onset the point is elastic and has no band state.
 #include <optional>
+#include <string>
 
 #include "material/band_damage_law.hpp"
 #include "material/effective_size.hpp"
 
 namespace ecm {
+
+// The smallest effective size the enriched point accepts: H >= h (1 + kMinimumSizeMargin).
+// Below it the bulk (volume fraction 1 - f ~ 1e-6) is so thin that the round-off of the macro
+// strain, amplified by 1 / (1 - f) in Eq. (4), exceeds the stress tolerances (docs/model.md).
+inline constexpr double kMinimumSizeMargin = 1e-6;
+inline double minimumEffectiveSize(double bandWidth) { return bandWidth * (1.0 + kMinimumSizeMargin); }
+// Why an effective size is refused ("" if it is accepted), for the scene readers' messages.
+std::string effectiveSizeProblem(double effectiveSize, double bandWidth);
 
 struct EnrichedParams {
   BandDamageParams band;    // elastic constants (shared by bulk and band) and the band's damage law
@@ -53,6 +62,10 @@ enum class SnapBackPolicy {
 struct UpdateOptions {
   SnapBackPolicy snapBack = SnapBackPolicy::Report;
   bool tangent = true;  // the consistent tangent of Eq. (10); an explicit solver does not use it
+  // Bit i set: the caller holds Voigt stress component i fixed (mixed control) and solves for
+  // its strain. A state is then stable only if the consistent tangent's block of these
+  // components is positive definite as well as K of Eq. (9) (docs/model.md).
+  unsigned stressControlled = 0;
   UpdateOptions() = default;
   UpdateOptions(SnapBackPolicy policy, bool withTangent = true) : snapBack(policy), tangent(withTangent) {}  // NOLINT: implicit
 };
@@ -117,6 +130,21 @@ class EnrichedBand {
   double bandWidth() const { return bandWidth_; }
   double tensileStrength() const { return law_.law().tensileStrength; }
 
+  // Snap-back on the path (docs/model.md): along the loading path from the converged state b to
+  // the jump `jump` (a straight segment in jump space, the band on the loading surface of b),
+  // the first fraction t in [0, 1] where the state stops being stable under the caller's
+  // control (K of Eq. (9), and the stress-controlled block of D of Eq. (10), positive
+  // definite): the limit point. nullopt if the path stays stable.
+  std::optional<double> firstUnstableOnPath(const BandState& b, const BandDamageLaw::LoadingSurface& surface,
+                                            const Vec2& jump, unsigned stressControlled = 0) const;
+  // The band's traction at its converged state is below kFailedTraction f_t'.
+  bool bandHasFailed(const BandState& b) const;
+  // K of Eq. (9) at a jump, the band on the given loading surface with its loading tangent.
+  Mat2 loadingJacobian(const BandState& b, const BandDamageLaw::LoadingSurface& surface, const Vec2& jump) const;
+  // Both > 0 where the state with this K is stable under the caller's control (scaled,
+  // continuous): the smallest real eigenvalue of K, and that of the stress-controlled block of D.
+  Vec2 stabilityMargins(const BandState& b, const Mat2& jacobian, unsigned stressControlled) const;
+
   // K of Eq. (9) with the band's damage frozen at x (a_L = x a): always positive definite.
   Mat2 secantJacobian(const BandState& b, double x) const;
   // The solve with the secant K of Eq. (9) in closed form: n^T a n = mu I + (lambda + mu) n n^T
@@ -129,16 +157,30 @@ class EnrichedBand {
   static constexpr int kMaxIterations = 60;
   static constexpr double kRelativeTolerance = 1e-10;  // |residual| <= this * f_t' + kRoundOff |a eps|
   static constexpr double kRoundOff = 1e-13;
-  // Loading increments whose jump exceeds kJumpCheck h are checked for a skipped snap-back.
+  // Loading increments whose jump exceeds kJumpCheck h are checked for a passed limit point:
+  // the stability margins sampled every kJumpCheck h along the path (at least kJumpSamples, at
+  // most kMaxPathSamples samples) and geometrically closer towards its start, then minimised
+  // next to the smallest kRefinedMinima local minima of the samples.
   static constexpr double kJumpCheck = 1e-3;
   static constexpr int kJumpSamples = 8;
+  static constexpr int kMaxPathSamples = 256;
+  static constexpr double kFirstGeometricSample = 1e-7;  // then x kGeometricRatio up to the first uniform one
+  static constexpr double kGeometricRatio = 1.1;
+  // A band whose traction is below kFailedTraction f_t' at the start of an increment has
+  // failed: no snap-back can drop the stress by more than that, and its path is not checked.
+  static constexpr double kFailedTraction = 1e-6;
+  static constexpr std::size_t kRefinedMinima = 3;
+  // A scaled stability margin above -kMarginFloor is stable: a failed band is neutral in
+  // shear (its margin tends to 0), and round-off must not make that a snap-back.
+  static constexpr double kMarginFloor = 1e-9;
   // A corrector root this close below the loading surface (relative in Y; the traction
   // tolerance allows ~2e-10) is neutral loading, not a healed band.
   static constexpr double kNeutralLoading = 1e-8;
 
  private:
   // The cracked update proper: elastic predictor, then damage corrector on the envelope.
-  UpdateResult predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent) const;
+  UpdateResult predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent,
+                              unsigned stressControlled = 0) const;
   // Commit a converged equilibrium (tangent Eq. (10), dissipation) or report NotConverged.
   UpdateResult finishUpdate(BandState& b, Voigt& strain, const Voigt& eps, const Vec2& jump, const BandEquilibrium& eq,
                             double thresholdOld, double tol, bool tangent, UpdateResult& res) const;

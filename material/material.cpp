@@ -49,11 +49,13 @@ Material::Material(const MaterialParams& p)
   if (const auto* s = smeared()) params_.softeningModulus = s->law().law().softeningModulus;
 }
 
-UpdateResult Material::update(MaterialPoint& point, const Voigt& increment, const EffectiveSize& size) const {
+UpdateResult Material::update(MaterialPoint& point, const Voigt& increment, const EffectiveSize& size,
+                              const UpdateOptions& options) const {
   struct Visitor {
     MaterialPoint& p;
     const Voigt& d;
     const EffectiveSize& size;
+    const UpdateOptions& options;
     UpdateResult operator()(const LinearElastic& m) const {
       LinearElastic::State s{p.strain};
       UpdateResult r = m.update(s, d);
@@ -68,10 +70,10 @@ UpdateResult Material::update(MaterialPoint& point, const Voigt& increment, cons
       return r;
     }
     UpdateResult operator()(const EnrichedBand& m) const {
-      return p.band ? m.updateCracked(*p.band, p.strain, d) : m.updateIntact(p.strain, d, size, p.band);
+      return p.band ? m.updateCracked(*p.band, p.strain, d, options) : m.updateIntact(p.strain, d, size, p.band, options);
     }
   };
-  return std::visit(Visitor{point, increment, size}, model_);
+  return std::visit(Visitor{point, increment, size, options}, model_);
 }
 
 Voigt Material::stress(const MaterialPoint& point) const {

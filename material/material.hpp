@@ -44,7 +44,8 @@ struct MaterialPoint {
 class Material {
  public:
   explicit Material(const MaterialParams& p);
-  UpdateResult update(MaterialPoint& point, const Voigt& strainIncrement, const EffectiveSize& size) const;
+  UpdateResult update(MaterialPoint& point, const Voigt& strainIncrement, const EffectiveSize& size,
+                      const UpdateOptions& options = {}) const;
   // Stress of a point without changing it (for output and restarts).
   Voigt stress(const MaterialPoint& point) const;
   const MaterialParams& params() const { return params_; }

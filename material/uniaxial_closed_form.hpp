@@ -27,6 +27,41 @@ inline UniaxialBandPoint uniaxialBandResponse(const DamageLawParams& law, double
   return {stress, normal, bandWidth * (normal - stress / e)};
 }
 
+// Uniaxial strain (eps_yy = gamma_xy = 0): the band's strain is (e, 0, 0), both effective
+// principal stresses are positive, Y = a11 e^2 / 2 = F(x) (Eq. 12) and sigma_xx = x a11 e
+// (Eq. 11), with a11 the in-plane stiffness's first entry. Here w = h (e - sigma / a11), and
+// the macro strain is eps = sigma / a11 + w / H (Eqs. (2)-(4)).
+inline UniaxialBandPoint uniaxialStrainBandResponse(const DamageLawParams& law, double a11, double bandWidth, double x) {
+  const double e = std::sqrt(2.0 * damageFunction(law, x) / a11);
+  const double stress = x * a11 * e;
+  return {stress, e, bandWidth * (e - stress / a11)};
+}
+
+// The effective size beyond which the macro curve eps = sigma / modulus + w / H turns back
+// (snap-back under strain control): modulus / max(-d sigma / d w) over the band's curve
+// `curve(x)` (a UniaxialBandPoint of the integrity x); infinity if the curve never softens.
+// Scanned in log x, then the steepest stretch refined by golden section.
+template <class Curve>
+double snapBackEffectiveSize(const Curve& curve, double modulus) {
+  const auto slope = [&](double lx) {  // -d sigma / d w at x = 10^lx, central difference in lx
+    const double d = 1e-6;
+    const UniaxialBandPoint a = curve(std::pow(10.0, lx + d)), b = curve(std::pow(10.0, lx - d));
+    return b.opening > a.opening ? -(b.stress - a.stress) / (b.opening - a.opening) : 0.0;
+  };
+  double best = 0.0, at = 0.0;
+  for (double lx = -1e-5; lx > -14.0; lx -= 0.01)
+    if (const double s = slope(lx); s > best) best = s, at = lx;
+  if (!(best > 0.0)) return INFINITY;
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double lo = at - 0.01, hi = std::min(at + 0.01, -2e-6);
+  for (int it = 0; it < 60; ++it) {
+    const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+    if (slope(a) > slope(b)) hi = b;
+    else lo = a;
+  }
+  return modulus / std::max(best, slope(0.5 * (lo + hi)));
+}
+
 // Macro strain of a point of effective size H at that state: eps = sigma/E + w/H.
 inline double uniaxialMacroStrain(const UniaxialBandPoint& p, double youngsModulus, double effectiveSize) {
   return p.stress / youngsModulus + p.opening / effectiveSize;

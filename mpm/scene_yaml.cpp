@@ -271,7 +271,8 @@ Scene readScene(const YamlMap& m) {
   s.particlesPerCell = m.getOr<int>("particles_per_cell", 2, Range::closed(1.0, 8.0));
 
   std::map<std::string, int> names;
-  for (const YamlMap& mm : m.sequence("materials")) {
+  const std::vector<YamlMap> materialMaps = m.sequence("materials");
+  for (const YamlMap& mm : materialMaps) {
     MaterialParams p = io::readMaterial(mm);
     if (!(p.density > 0.0)) mm.failHere("material '" + p.name + "': MPM needs density > 0 (t/mm^3)");
     if (!names.emplace(p.name, static_cast<int>(s.materials.size())).second)
@@ -294,6 +295,16 @@ Scene readScene(const YamlMap& m) {
   if (s.bodies.empty()) m.fail("bodies", "needs at least one body");
   if (m.has("solver")) s.solver = readSolver(m.child("solver"), preset);
   if (!preset.empty()) applyPreset(*findPreset(preset), s);
+  // The grid's cells set H (the solver's effective_size rule): its smallest value must be one
+  // the enriched point accepts.
+  const EffectiveSize cellSize{s.solver.effectiveSize, 0.0, s.grid.cellSize[0], s.grid.cellSize[1]};
+  std::size_t index = 0;
+  for (const YamlMap& mm : materialMaps) {
+    const MaterialParams& p = s.materials[index++];
+    if (p.model != ModelKind::Enriched) continue;
+    if (const std::string problem = effectiveSizeProblem(cellSize.smallest(), p.bandWidth); !problem.empty())
+      mm.failHere("material '" + p.name + "' on this grid: the cells' " + problem);
+  }
   s.endTime = m.get<double>("end_time", Range::positive());
   s.outputInterval = m.getOr<double>("output_interval", 0.0, Range::nonNegative());
   s.snapshotEvery = m.getOr<int>("snapshot_every", 1, Range::closed(1.0, 1e9));

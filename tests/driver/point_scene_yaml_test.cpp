@@ -59,9 +59,14 @@ TEST(PointSceneYaml, RejectsZeroIncrements) {
   expectRejected("effective_size: 10\npath: {preset: uniaxial_tension, strain: 1e-4, increments: 0}\n", 12, "increments");
 }
 
-TEST(PointSceneYaml, RejectsAnEffectiveSizeNotAboveTheBandWidth) {
+TEST(PointSceneYaml, RejectsAnEffectiveSizeBelowTheSmallestOneAndGivesTheBound) {
+  // The bound is h (1 + 1e-6) = 0.05000005 mm for h = 0.05 mm (docs/model.md).
   expectRejected("effective_size: 0.05\npath: {preset: uniaxial_tension, strain: 1e-4, increments: 5}\n", 11,
-                 "must exceed the band width");
+                 "0.05000005 mm");
+  expectRejected("effective_size: 0.05000000005\npath: {preset: uniaxial_tension, strain: 1e-4, increments: 5}\n", 11,
+                 "below the smallest effective size");
+  EXPECT_NO_THROW(readPointScene(io::parseYaml(kMaterial + "effective_size: 0.05000005\n"
+                                               "path: {preset: uniaxial_tension, strain: 1e-4, increments: 5}\n", "s.yaml")));
 }
 
 TEST(PointSceneYaml, RejectsAComponentGivenTwiceOrNotAtAll) {

@@ -59,6 +59,18 @@ loads:
 TEST(SceneYaml, ErrorsNameFileAndLine) {
   auto err = [](const std::string& text) { return inputError([&] { readScene(io::parseYaml(text, "scene.yaml")); }); };
   {
+    // Cells of 1e-5 mm give H = 1e-5 mm, below h (1 + 1e-6) for h = 0.05 mm (docs/model.md).
+    std::string t = kScene;
+    t.replace(t.find("cell_size: [10, 10]"), 19, "cell_size: [1e-5, 1e-5]");
+    t.replace(t.find("max: [100, 100]"), 15, "max: [1e-4, 1e-4]");
+    t.replace(t.find("max: [100, 0]"), 13, "max: [1e-4, 0]");
+    t.replace(t.find("model: linear_elastic,"), 22,
+              "model: enriched, tensile_strength: 3, softening_modulus: 8, softening_exponent: 0.1, band_width: 0.05,");
+    const auto e = err(t);
+    EXPECT_EQ(e.line, 4);
+    expectContains(e.what(), "0.05000005 mm");
+  }
+  {
     const auto e = err(kScene + "bogus: 1\n");
     EXPECT_EQ(e.line, 10);
     expectContains(e.what(), "scene.yaml:10:");
