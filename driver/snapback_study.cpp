@@ -72,14 +72,8 @@ PointScene uniaxialScene(const MaterialParams& m, double bigH, double strain, in
 // E / max(-d sigma/d w) over the band's traction-opening curve (closed form, nu included).
 double snapBackSize(const MaterialParams& m) {
   const DamageLawParams law = m.band().law();
-  double steepest = 0.0;
-  UniaxialBandPoint prev = uniaxialBandResponse(law, m.elastic.poissonRatio, m.bandWidth, 1.0);
-  for (double lx = -1e-6; lx > -14.0; lx *= 1.01) {
-    const UniaxialBandPoint p = uniaxialBandResponse(law, m.elastic.poissonRatio, m.bandWidth, std::pow(10.0, lx));
-    if (p.opening > prev.opening) steepest = std::max(steepest, -(p.stress - prev.stress) / (p.opening - prev.opening));
-    prev = p;
-  }
-  return steepest > 0.0 ? m.elastic.youngsModulus / steepest : INFINITY;
+  return snapBackEffectiveSize(
+      [&](double x) { return uniaxialBandResponse(law, m.elastic.poissonRatio, m.bandWidth, x); }, m.elastic.youngsModulus);
 }
 
 }  // namespace
