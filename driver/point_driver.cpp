@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "driver/opening_control.hpp"
 
@@ -54,12 +55,14 @@ class Runner {
       aim();
       if (!stepToOnsetInside(k, t)) return false;
       aim();  // the rest of the increment, from the onset state
+      const MaterialPoint start = point_;
       const StepOutcome out = mixedControlStep(material_, point_, stress_, t, size_, settings_);
       if (out.result.status == UpdateStatus::SnapBack) {
         if (!snapBack(k, t)) return false;
         continue;
       }
       if (!out.converged()) return fail(out, k, i);
+      if (peakInside(k, t, start, out)) continue;
       record(k, ++increment_, out, false, false);
     }
     return true;
@@ -85,6 +88,82 @@ class Runner {
     const Eigen::VectorXd x = block.partialPivLu().solve(r);
     for (int i = 0; i < m; ++i) d[free[i]] = x[i];
     return d;
+  }
+
+  struct BranchState {
+    OpeningOutcome out;
+    MaterialPoint point;
+  };
+  // The maximum of the first principal stress on the branch traced under opening control from
+  // `from` (stress `first`) to the normal jump `to` (stress `last`), if it lies strictly inside:
+  // the stress rises at the start, and a sample inside is above both ends.
+  std::optional<BranchState> stressMaximum(OpeningTarget o, const MaterialPoint& from, double first, double to,
+                                           double last, double maxLoadFactor) const {
+    const EnrichedBand* model = material_.enriched();
+    const double j0 = from.band->normalJump();
+    if (!(to > j0)) return std::nullopt;
+    BranchState best;
+    const auto stressAt = [&](double jump, bool keep) -> double {
+      MaterialPoint m = from;
+      o.normalJump = jump;
+      const OpeningOutcome r = openingControlStep(*model, m, o, settings_.tolerance);
+      if (!r.step.converged() || r.loadFactor < 0.0 || r.loadFactor > maxLoadFactor) return -INFINITY;
+      if (keep) best = {r, m};
+      return principalStresses(r.step.result.stress).first;
+    };
+    // Only a branch whose stress rises at the start can have a maximum inside (one solve).
+    const double d = std::min(1e-3 * (to - j0), 1e-6 * model->bandWidth());
+    if (!(stressAt(j0 + d, false) > first)) return std::nullopt;
+    // Bracket the maximum among samples, evenly spaced and geometrically closer to the start
+    // (where a softening band's maximum lies), then golden section next to the best sample.
+    std::vector<double> js;
+    for (int k = 1; k < 16; ++k) js.push_back(j0 + (to - j0) * k / 16.0);
+    for (double x = d; x < (to - j0) / 16.0; x *= 2.0) js.push_back(j0 + x);
+    std::sort(js.begin(), js.end());
+    js.insert(js.begin(), j0);
+    js.push_back(to);
+    std::size_t top = 1;
+    double topStress = -INFINITY;
+    for (std::size_t k = 1; k + 1 < js.size(); ++k)
+      if (const double sk = stressAt(js[k], false); sk > topStress) topStress = sk, top = k;
+    if (!(topStress > std::max(first, last))) return std::nullopt;
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    double lo = js[top - 1], hi = js[top + 1], a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+    double sa = stressAt(a, false), sb = stressAt(b, false);
+    for (int it = 0; it < 80 && hi - lo > 1e-12 * (to - j0); ++it) {
+      if (sa > sb) hi = b, b = a, sb = sa, a = hi - g * (hi - lo), sa = stressAt(a, false);
+      else lo = a, a = b, sa = sb, b = lo + g * (hi - lo), sb = stressAt(b, false);
+    }
+    if (!(stressAt(0.5 * (lo + hi), true) > std::max(first, last))) return std::nullopt;
+    return best;
+  }
+
+  // A stress maximum inside a converged increment of a loading band (the nu > 0 band's traction
+  // rises after onset before it softens) gets a row of its own: the increment's path is stable,
+  // so opening control from its start traces it. The rest of the increment is then taken from
+  // the maximum. Returns false (nothing recorded) if there is none.
+  bool peakInside(int k, const MixedTarget& t, const MaterialPoint& start, const StepOutcome& out) {
+    if (!material_.enriched() || !start.band || !point_.band || !(point_.band->integrity < start.band->integrity))
+      return false;
+    OpeningTarget o;
+    o.control = t.control;
+    o.stress = t.stress;
+    for (int c = 0; c < 3; ++c) o.direction[c] = t.control[c] == Control::Strain ? t.strainIncrement[c] : 0.0;
+    const std::optional<BranchState> peak = stressMaximum(o, start, principalStresses(stress_).first, point_.band->normalJump(),
+                                                          principalStresses(out.result.stress).first, 1.0);
+    if (!peak) return false;
+    // The rest of the increment from the maximum; the original end stands if it fails.
+    MixedTarget rest = t;
+    for (int c = 0; c < 3; ++c)
+      if (t.control[c] == Control::Strain) rest.strainIncrement[c] = start.strain[c] + t.strainIncrement[c] - peak->point.strain[c];
+    MaterialPoint end = peak->point;
+    const StepOutcome restOut = mixedControlStep(material_, end, peak->out.step.result.stress, rest, size_, settings_);
+    if (!restOut.converged()) return false;
+    point_ = peak->point;
+    record(k, increment_ + 1, peak->out.step, false, false, true, kPeakRow);
+    point_ = end;
+    record(k, ++increment_, restOut, false, false);
+    return true;
   }
 
   // An intact point whose increment crosses the onset of cracking first steps exactly to the
@@ -143,7 +222,7 @@ class Runner {
     for (int c = 0; c < 3; ++c)
       if (t.control[c] == Control::Stress) mask |= 1u << c;
     double lambda = 0.0, dJump = 1e-4 * h;
-    bool turned = false;
+    bool turned = false, peaked = false;
     Saved before = save(lambda);
     for (int guard = 0; guard < 100000; ++guard) {
       MaterialPoint trial = point_;
@@ -162,7 +241,7 @@ class Runner {
         if (t || out.loadFactor < 0.0) {
           turned = true;
           const double start = point_.band->normalJump();
-          const bool ok = t ? stepToLimit(k, o, start + *t * (o.normalJump - start), lambda)
+          const bool ok = t ? stepToLimit(k, o, before, start + *t * (o.normalJump - start), lambda, peaked)
                             : limitPoint(k, o, before, o.normalJump, lambda);
           if (!ok) return false;
           if (!r.detected) {
@@ -183,6 +262,23 @@ class Runner {
           dJump = 1e-4 * h;
           continue;
         }
+      }
+      // Before the limit point, a stress maximum of the traced branch gets a row.
+      if (!turned && !peaked && principalStresses(out.step.result.stress).first < principalStresses(stress_).first &&
+          principalStresses(stress_).first > principalStresses(before.stress).first) {
+        peaked = true;
+        const std::optional<BranchState> peak =
+            stressMaximum(o, before.point, principalStresses(before.stress).first, o.normalJump,
+                          principalStresses(out.step.result.stress).first, INFINITY);
+        if (peak) {  // step back and on to the maximum, and trace on from there
+          restore(before);
+          point_ = peak->point;
+          lambda = before.lambda + peak->out.loadFactor;
+          accumulate(peak->out.step);
+          record(k, increment_ + 1, peak->out.step, true, false, false, kPeakRow);
+          continue;
+        }
+        record(k, increment_ + 1, out.step, true, false, false, kPeakRow);
       }
       if (lambda + out.loadFactor < 1.0) {
         before = save(lambda);
@@ -222,10 +318,29 @@ class Runner {
 
   // Step from the current state to the limit point at normal jump `limit` and give it a row
   // (a limit point at the current state marks the row already written there).
-  bool stepToLimit(int k, OpeningTarget o, double limit, double& lambda) {
+  bool stepToLimit(int k, OpeningTarget o, const Saved& before, double limit, double& lambda, bool& peaked) {
     if (limit - point_.band->normalJump() < 1e-9 * material_.enriched()->bandWidth()) {
       if (!run_.history.empty()) run_.history.back().event |= kLastStableRow;
       return true;
+    }
+    if (!peaked) {
+      // A stress maximum between the previous trace state and the limit point (the trace's
+      // last step may have landed next to it) gets its row first.
+      MaterialPoint probe = before.point;
+      o.normalJump = limit;
+      const OpeningOutcome atLimit = openingControlStep(*material_.enriched(), probe, o, settings_.tolerance);
+      const std::optional<BranchState> peak =
+          atLimit.step.converged() ? stressMaximum(o, before.point, principalStresses(before.stress).first, limit,
+                                                   principalStresses(atLimit.step.result.stress).first, INFINITY)
+                                   : std::nullopt;
+      if (peak) {
+        peaked = true;
+        restore(before);
+        point_ = peak->point;
+        lambda = before.lambda + peak->out.loadFactor;
+        accumulate(peak->out.step);
+        record(k, increment_ + 1, peak->out.step, true, false, false, kPeakRow);
+      }
     }
     MaterialPoint end = point_;
     o.normalJump = limit;

@@ -51,6 +51,7 @@ struct HistoryRow {
 enum RowEvent : unsigned {
   kOnsetRow = 1,       // the exact onset of cracking (Eq. (12) with D = 0)
   kLastStableRow = 2,  // the last stable state before a snap-back: the limit point of the path
+  kPeakRow = 4,        // a maximum of the first principal stress inside an increment
 };
 
 struct SnapBackReport {

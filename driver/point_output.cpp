@@ -73,6 +73,7 @@ void writePointPlots(const PointScene& scene, const std::filesystem::path& dir) 
                {"history.csv", "3:7", "", "sig_yy", "lines"},
                {"history.csv", "3:8", "", "sig_xy", "lines"},
                {"history.csv", "(int($24) & 1 ? $3 : 1/0):6", "", "onset", "points pt 7 ps 1.5"},
+               {"history.csv", "(int($24) & 4 ? $3 : 1/0):6", "", "stress maximum inside an increment", "points pt 9 ps 1.5"},
                {"history.csv", "(int($24) & 2 ? $3 : 1/0):6", "", "last stable state before a snap-back", "points pt 6 ps 2"}};
   io::renderPlot(ss, dir / "stress_strain.png");
   io::PlotSpec to;

@@ -172,16 +172,18 @@ UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voi
   const Voigt eps = strain + increment;
   UpdateResult res;
   const Voigt aEps = stiffness() * eps;
-  // Relative to f_t'; at enormous strains the floor is the round-off of a : eps itself, which the
-  // bulk stress a (eps - f eps_L) / (1 - f) of Eq. (4) amplifies by 1 / (1 - f).
-  const double tol = kRelativeTolerance * tensileStrength() + kRoundOff * aEps.norm() / (1.0 - b.volumeFraction);
+  // Relative to f_t'; at enormous strains the floor is the round-off of a : eps itself, or of
+  // f a eps_L / (1 - f) in the bulk stress of Eq. (4), which is larger once f > 1/2 (f near 1,
+  // docs/model.md).
+  const double f = b.volumeFraction;
+  const double tol = kRelativeTolerance * tensileStrength() + kRoundOff * aEps.norm() * std::max(1.0, f / (1.0 - f));
 
   // 1. Elastic predictor: with the band's damage frozen, Eq. (6) is linear in [u] and the secant
   //    K of Eq. (9) (a_L = x0 a, always positive definite) solves it in one step. If the band
   //    stays inside its loading surface, that is the answer (unloading or neutral loading):
   //    most cracked updates of a structure end here, without the damage law or its tangent.
   const JumpMap n = jumpToStrain(b.crackNormal);
-  const double f = b.volumeFraction, x0 = b.integrity;
+  const double x0 = b.integrity;
   Vec2 jump = b.jump;
   Voigt aBand = stiffness() * (b.onsetStrain + n * jump / bandWidth_);            // a eps_L, Eq. (3)
   const auto stressOf = [&](const Voigt& aL) -> Voigt { return (aEps - f * aL) / (1.0 - f); };  // Eqs. (2), (4)
@@ -254,7 +256,8 @@ UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voi
       return res;
     }
     eq = equilibrium(b, surface, eps, jump, false);  // neutral: the secant K, damage unchanged
-  } else if (!(stabilityMargins(b, eq.jacobian, stressControlled).minCoeff() > -kMarginFloor)) {
+  } else if (stressControlled == 0 ? !positiveDefinite(eq.jacobian)
+                                    : !(stabilityMargins(b, eq.jacobian, stressControlled).minCoeff() > -kMarginFloor)) {
     res.status = UpdateStatus::SnapBack;  // a root on the unstable branch
     return res;
   }

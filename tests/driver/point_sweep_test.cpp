@@ -1,6 +1,6 @@
 // The point driver over the whole range of effective sizes and increment sizes: every run
-// completes, shows its onset and peak, reports a snap-back exactly where the closed form's macro
-// curve turns back, with a positive stress drop, and dissipates G_F once the band has failed.
+// completes, shows its onset and its peak, reports a snap-back exactly where the closed form's
+// macro curve turns back, with a positive stress drop, and dissipates G_F once the band has failed.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -50,6 +50,24 @@ double closedFormSnapBackSize(const std::string& path, double nu) {
   return snapBackEffectiveSize([&](double x) { return uniaxialBandResponse(law, nu, test::kH, x); }, test::kE);
 }
 
+// The largest stress of the band's curve in uniaxial tension (closed form, scanned in log x and
+// refined by golden section): f_t' for nu = 0, 3.0570 MPa for nu = 0.2.
+double tensionPeak(double nu) {
+  const DamageLawParams law{test::kE, test::kFt, test::kEp, test::kN};
+  const auto stress = [&](double lx) { return uniaxialBandResponse(law, nu, test::kH, std::pow(10.0, lx)).stress; };
+  double best = stress(0.0), at = 0.0;
+  for (double lx = -1e-3; lx > -14.0; lx -= 1e-3)
+    if (stress(lx) > best) best = stress(lx), at = lx;
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double lo = at - 1e-3, hi = std::min(at + 1e-3, 0.0);
+  for (int it = 0; it < 60; ++it) {
+    const double a = hi - g * (hi - lo), b = lo + g * (hi - lo);
+    if (stress(a) > stress(b)) hi = b;
+    else lo = a;
+  }
+  return std::max(best, stress(0.5 * (lo + hi)));
+}
+
 TEST(PointSweep, ClosedFormSnapBackSizes) {
   // nu = 0: the 1D law, h (E + E_p) / E_p = 195.56 mm (its steepest point is the onset).
   // The scan starts a hair inside the curve (x = 1 - 2e-5), so it sees a slope 1e-6 flatter.
@@ -57,6 +75,10 @@ TEST(PointSweep, ClosedFormSnapBackSizes) {
   EXPECT_NEAR(closedFormSnapBackSize("uniaxial_strain", 0.0), test::kH * (test::kE + test::kEp) / test::kEp, 1e-3);
   // nu = 0.2 in tension: 323.65 mm (README; a scan in steps of 0.1 % in log x gives 323.6495).
   EXPECT_NEAR(closedFormSnapBackSize("uniaxial_tension", 0.2), 323.6495, 1e-3);
+  // The traction's maximum: f_t' at onset for nu = 0; 3.0570 MPa for nu = 0.2 (README), below
+  // the laterally constrained bound f_t' / sqrt(1 - nu^2) = 3.0619 MPa.
+  EXPECT_NEAR(tensionPeak(0.0), test::kFt, 1e-12);
+  EXPECT_NEAR(tensionPeak(0.2), 3.0570, 1e-4);
 }
 
 TEST(PointSweep, EveryEffectiveSizeAndIncrementSizeTellsTheTruth) {
@@ -85,8 +107,13 @@ TEST(PointSweep, EveryEffectiveSizeAndIncrementSizeTellsTheTruth) {
           ASSERT_GT(s.onsetStress, 0.0) << where.str();
           EXPECT_GE(s.peakStress, s.onsetStress) << where.str();
           const double onsetExpected = path == "uniaxial_strain" ? test::kFt / std::sqrt(1.0 - nu * nu) : test::kFt;
-          // To the traction tolerance of the material, 1e-10 f_t' + 1e-13 |a eps| / (1 - f)
-          // (enriched_band.cpp): 3e-7 MPa at the smallest H.
+          // The peak, even inside an increment: the band curve's maximum (tension: the traction
+          // rises after onset when nu > 0); a maximum is flat, so its golden section gives it to
+          // far better than 1e-6 f_t'.
+          const double peakExpected = path == "uniaxial_strain" ? onsetExpected : tensionPeak(nu);
+          EXPECT_NEAR(s.peakStress, peakExpected, 1e-6 * test::kFt) << where.str();
+          // To the traction tolerance of the material, 1e-10 f_t' + 1e-13 |a eps| f / (1 - f)
+          // near f = 1 (enriched_band.cpp): 3e-7 MPa at the smallest H.
           const double f = test::kH / size;
           EXPECT_NEAR(s.onsetStress, onsetExpected, 1e-9 * onsetExpected + 2e-13 * onsetExpected / (1.0 - f)) << where.str();
           // Snap-back exactly where the closed form's macro curve turns back (the tension

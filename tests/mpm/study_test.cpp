@@ -3,6 +3,8 @@
 // the closed forms, and the Pareto marking keeps exactly the non-dominated settings.
 #include <gtest/gtest.h>
 
+#include <iomanip>
+
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <numbers>
@@ -261,7 +263,10 @@ TEST(Study, PointIncrementsAgainstTheClosedForm) {
   ASSERT_EQ(r.runs.size(), 3u);
   ASSERT_EQ(study.metrics, (std::vector<std::string>{"stress_path", "dissipation", "peak_stress"}));
   for (const RunRecord& run : r.runs) EXPECT_LT(std::abs(run.metrics[1]), 1e-5) << run.label;
-  EXPECT_GT(r.runs[0].metrics[0], r.runs[1].metrics[0]);
+  // With 20 and 200 increments the worst stretch is the same one: the traction's rise within
+  // 2e-6 of strain between the onset row and the peak row (ecm-point writes both, see
+  // docs/point-driver.md), with no increment end in between; 2000 increments put one there.
+  EXPECT_GE(r.runs[0].metrics[0], r.runs[1].metrics[0] * (1.0 - 1e-4)) << std::setprecision(12) << r.runs[0].metrics[0] << " " << r.runs[1].metrics[0];  // a tie
   EXPECT_GT(r.runs[1].metrics[0], r.runs[2].metrics[0]);
   EXPECT_NEAR(r.reference["peak_stress_MPa"].get<double>(), 3.057, 1e-3);  // README: nu = 0.2 peak
 }
