@@ -3,9 +3,8 @@
 // the closed forms, and the Pareto marking keeps exactly the non-dominated settings.
 #include <gtest/gtest.h>
 
-#include <iomanip>
-
 #include <cmath>
+#include <iomanip>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <sstream>
