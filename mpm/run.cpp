@@ -83,18 +83,21 @@ void plot(const Scene& scene, const std::filesystem::path& dir) {
   io::renderPlot(spec, dir / "load_displacement.png");
 }
 
-// The final state of every particle (x, y, damage, material id, normal opening of the band), for
-// damage and crack maps.
+// The final state of every particle (x, y, damage, material id, normal opening and normal of the
+// band, stress), for damage and crack maps and the locking diagnosis.
 // Written as PATH.tmp, then renamed: a restart rewrites it, and a reader never sees half of it.
 void writeParticles(const Solver& s, const std::filesystem::path& path) {
   std::filesystem::path tmp = path;
   tmp += ".tmp";
   try {
-    io::CsvWriter csv(tmp, {"x_mm", "y_mm", "damage", "material", "opening_mm"});
+    io::CsvWriter csv(tmp, {"x_mm", "y_mm", "damage", "material", "opening_mm", "normal_x", "normal_y", "sig_xx_MPa",
+                            "sig_yy_MPa", "sig_xy_MPa"});
     const Particles& p = s.particles();
     for (std::size_t i = 0; i < p.size(); ++i) {
-      const double opening = p.band[i] >= 0 ? p.bands[static_cast<std::size_t>(p.band[i])].normalJump() : 0.0;
-      csv.row({p.position[i][0], p.position[i][1], s.damage(i), static_cast<double>(p.material[i]), opening});
+      const BandState* b = p.band[i] >= 0 ? &p.bands[static_cast<std::size_t>(p.band[i])] : nullptr;
+      const Vec2 normal = b ? b->crackNormal : Vec2::Zero();
+      csv.row({p.position[i][0], p.position[i][1], s.damage(i), static_cast<double>(p.material[i]),
+               b ? b->normalJump() : 0.0, normal[0], normal[1], p.stress[i][0], p.stress[i][1], p.stress[i][2]});
     }
     csv.close();
   } catch (const io::OutputError& e) {

@@ -130,7 +130,8 @@ TEST(Run, ParticleSnapshotsAtTheRequestedTimes) {
   const RunResult r = runScene(s, o);
   ASSERT_TRUE(r.completed) << r.error;
   const io::CsvTable a = io::readCsv(o.outputDir / "particles_t3e-05.csv");
-  EXPECT_EQ(a.header, (std::vector<std::string>{"x_mm", "y_mm", "damage", "material", "opening_mm"}));
+  EXPECT_EQ(a.header, (std::vector<std::string>{"x_mm", "y_mm", "damage", "material", "opening_mm", "normal_x",
+                                                "normal_y", "sig_xx_MPa", "sig_yy_MPa", "sig_xy_MPa"}));
   EXPECT_EQ(a.rows.size(), r.particles);
   EXPECT_EQ(readFile(o.outputDir / "particles_t0.0001.csv"), readFile(o.outputDir / "particles_final.csv"));
   EXPECT_NE(readFile(o.outputDir / "particles_t3e-05.csv"), readFile(o.outputDir / "particles_final.csv"));
