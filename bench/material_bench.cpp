@@ -1,4 +1,4 @@
-// ns per constitutive update. Targets (issue 2): uncracked enriched within 1.5x of elastic;
+// ns per constitutive update. Targets: uncracked enriched within 1.5x of elastic;
 // cracked enriched in softening <= 1 microsecond.
 #include <benchmark/benchmark.h>
 

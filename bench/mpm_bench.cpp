@@ -1,7 +1,7 @@
 // MPM throughput: particle-updates per second (particles x steps / wall time) for one full
 // explicit step (P2G, grid update, G2P, stress update), on 1 and 2 threads, and the same step
 // phase by phase (BM_Phase: only the named phase timed; output = one VTU snapshot).
-// Targets (issue 5): >= 20 M elastic particle-updates/s per core with linear shape functions,
+// Targets: >= 20 M elastic particle-updates/s per core with linear shape functions,
 // >= 1.8x on 2 threads, <= 300 bytes per uncracked particle.
 #include <benchmark/benchmark.h>
 

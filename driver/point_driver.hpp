@@ -32,7 +32,7 @@ struct HistoryRow {
   Voigt strain = Voigt::Zero();
   Voigt stress = Voigt::Zero();
   double damage = 0.0;
-  double integrity = 1.0;    // 1 - D, kept separately (precision near D = 1, MODEL-NOTES pitfall 3)
+  double integrity = 1.0;    // 1 - D, kept separately (precision near D = 1, docs/model.md pitfall 3)
   double normalJump = 0.0;   // [u].n (mm), enriched only
   double slidingJump = 0.0;  // [u].t (mm)
   double opening = 0.0;      // inelastic opening w (mm): h (eps_L - C sigma)_nn, or H (eps - C sigma)_nn smeared

@@ -57,7 +57,7 @@ std::optional<double> BandDamageLaw::onsetFraction(const Voigt& strain, const Vo
   if (gb < 0.0) return std::nullopt;
   double ga = excess(0.0);
   if (ga >= 0.0) return 0.0;
-  // Illinois regula falsi on the piecewise-quadratic Y(alpha) (MODEL-NOTES pitfall 1).
+  // Illinois regula falsi on the piecewise-quadratic Y(alpha) (docs/model.md pitfall 1).
   double a = 0.0, b = 1.0;
   int side = 0;
   for (int it = 0; it < 200 && b - a > 1e-15; ++it) {

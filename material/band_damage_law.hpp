@@ -58,7 +58,7 @@ class BandDamageLaw {
 
   // Pure: does not change any state. The surface is that of the start of the increment.
   // With loadingTangent, a point exactly on the loading surface gets the one-sided loading
-  // tangent (MODEL-NOTES pitfall 2) instead of the secant.
+  // tangent (docs/model.md pitfall 2) instead of the secant.
   BandResponse evaluate(const LoadingSurface& surface, const Voigt& strain, bool loadingTangent = false) const;
   BandResponse evaluate(double integrity, const Voigt& strain, bool loadingTangent = false) const {
     return evaluate(loadingSurface(integrity), strain, loadingTangent);

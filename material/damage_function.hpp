@@ -1,6 +1,6 @@
 #pragma once
 // The damage evolution function F(D) of Eq. (13) and everything derived from it.
-// Internally the damage is carried as the integrity x = 1 - D (MODEL-NOTES pitfall 3):
+// Internally the damage is carried as the integrity x = 1 - D (docs/model.md pitfall 3):
 // near D = 1 a stored D would keep only ~1e-7 relative precision in 1 - D.
 namespace ecm {
 
@@ -45,7 +45,7 @@ double dissipationBetween(const DamageLawParams& p, double xOld, double xNew);
 // dissipationBetween otherwise.
 double dissipationBetween(const DamageLawParams& p, double xOld, double xNew, double fOld, double fNew);
 
-// Work per unit volume of band to complete failure, int_0^1 F(D) dD (MODEL-NOTES identity);
+// Work per unit volume of band to complete failure, int_0^1 F(D) dD (docs/model.md, identities);
 // times the band width h this is the fracture energy G_F. Adaptive GSL quadrature (QAG, Gauss-Kronrod 31) of the regularised integrand, rel. 1e-11.
 double dissipationToFailure(const DamageLawParams& p);
 

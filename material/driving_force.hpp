@@ -14,7 +14,7 @@ struct DrivingForce {
 };
 
 // `compliance` is the (isotropic) in-plane a^-1; for plane strain sigma_zz is not split
-// (MODEL-NOTES). Because Y is a symmetric function of the principal stresses, its gradient is
+// (docs/model.md). Because Y is a symmetric function of the principal stresses, its gradient is
 // sum_i dY/dp_i (n_i (x) n_i), well defined also at repeated principal stresses.
 DrivingForce drivingForce(const Voigt& effectiveStress, const Tangent& compliance);
 

@@ -214,7 +214,7 @@ UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voi
   }
 
   // 2. Damage corrector: Newton with line search on the monotonic loading envelope, smooth across
-  //    the loading surface (MODEL-NOTES pitfall 2: no loading/unloading kink inside the
+  //    the loading surface (docs/model.md pitfall 2: no loading/unloading kink inside the
   //    iteration), from the predictor's [u] with the loading tangent. The root must load the band
   //    (x <= x0) on a stable branch (K of Eq. (9) positive definite); otherwise the loading
   //    branch has turned back under strain control: a snap-back.

@@ -31,7 +31,7 @@ struct RegularisationError : std::domain_error {
 };
 
 // H_crit = 2 E G_F / f_t'^2: the minimum energy per volume of the law is the elastic energy at
-// peak, f_t'^2/(2E), reached as E_p -> infinity (MODEL-NOTES).
+// peak, f_t'^2/(2E), reached as E_p -> infinity (docs/model.md, identities).
 double criticalSmearedSize(double youngsModulus, double tensileStrength, double fractureEnergy);
 
 // E_p such that int_0^1 F dD = G_F / H for the given n (Brent on log E_p, rel. 1e-12).

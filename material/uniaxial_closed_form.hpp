@@ -13,7 +13,7 @@ namespace ecm {
 struct UniaxialBandPoint {
   double stress;      // sigma_nn = x (a eps_L)_nn (MPa)
   double bandStrain;  // eps_L,nn
-  double opening;     // w = h (eps_L,nn - sigma/E), the inelastic opening (MODEL-NOTES pitfall 4)
+  double opening;     // w = h (eps_L,nn - sigma/E), the inelastic opening (docs/model.md pitfall 4)
 };
 
 // Both effective principal stresses stay non-negative, so Y = eps_L : a : eps_L / 2 = F(x) (Eq. 12)

@@ -30,7 +30,7 @@ inline Principal principalStresses(const Voigt& s) {
   return {mean + radius, mean - radius, v.normalized()};
 }
 
-// Sign convention for a crack normal (MODEL-NOTES pitfall 5): first non-zero component positive.
+// Sign convention for a crack normal (docs/model.md pitfall 5): first non-zero component positive.
 inline Vec2 canonicalNormal(Vec2 n) {
   n.normalize();
   if (n[0] < 0.0 || (n[0] == 0.0 && n[1] < 0.0)) n = -n;

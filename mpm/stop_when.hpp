@@ -1,6 +1,6 @@
 #pragma once
 // Ending a softening run by its load, not its clock: "pull until the load has dropped below 10 %
-// of its peak" (the DEN of issue 6). The scene names a condition; its reaction along the driven
+// of its peak" (the DEN's end criterion). The scene names a condition; its reaction along the driven
 // component is watched at the output rows (the same values history.csv holds, so the stop can be
 // checked against the file), and the run ends at the first row, from `afterTime` on, where it is
 // below `loadBelow` times the largest one so far. end_time stays the latest end.

@@ -1,6 +1,6 @@
 // One material, two independent computations: the calibration's quadrature fixes E_p for
 // G_F; the point driver, running the enriched model on that material to complete failure,
-// must dissipate the same G_F (issue 4: within 0.5%).
+// must dissipate the same G_F (within 0.5%).
 #include <gtest/gtest.h>
 
 #include "calibration/fracture_energy.hpp"

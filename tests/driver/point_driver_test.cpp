@@ -73,7 +73,7 @@ TEST(PointDriver, MixedControlKeepsTheControlledStressesAtZero) {
 TEST(PointDriver, EnrichedUniaxialRunMatchesTheClosedForm) {
   // Strain control, pre-snap-back (H = 100 mm < 195.6 mm): the macro curve eps = sigma/E + w/H
   // with the band's exact response (frozen lateral band strain, nu = 0.2), compared at equal
-  // strain by interpolating the closed form; tolerance 0.5% of f_t' (issue 3).
+  // strain by interpolating the closed form; tolerance 0.5% of f_t'.
   const double bigH = 100.0;
   PointRun run = runPoint(scene(ModelKind::Enriched, bigH, preset("uniaxial_tension", 4e-4, 400)));
   ASSERT_TRUE(run.completed) << run.failure;
@@ -98,7 +98,7 @@ TEST(PointDriver, EnrichedUniaxialRunMatchesTheClosedForm) {
 }
 
 TEST(PointDriver, EnrichedPointDissipatesTheFractureEnergyUnderOpeningControl) {
-  // Energy identity (MODEL-NOTES): H x dissipation per volume = h int F dD = 0.110 N/mm.
+  // Energy identity (docs/model.md, identities): H x dissipation per volume = h int F dD = 0.110 N/mm.
   for (double bigH : {1.0, 100.0, 500.0, 2000.0}) {
     PresetPath p = preset("uniaxial_tension", 5e-5, 20);
     p.opening = 20.0;  // mm: far into the tail (the stress there is < 1e-4 f_t')

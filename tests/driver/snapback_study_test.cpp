@@ -1,4 +1,4 @@
-// The snap-back study on a reduced set of effective sizes: what issue 3 asks it to show.
+// The snap-back study on a reduced set of effective sizes: what it is meant to show.
 #include "driver/snapback_study.hpp"
 
 #include <gtest/gtest.h>
@@ -29,7 +29,7 @@ TEST(SnapBackStudy, EnrichedCurveIsOneForAllSizesAndTheSmearedCrackIsRefusedBeyo
   const StudyResult r = runSnapBackStudy(s, dir.path(), table);
   ASSERT_TRUE(r.allRunsCompleted);
   ASSERT_EQ(r.rows.size(), 4u);
-  // h (E + E_p)/E_p (MODEL-NOTES) and 2 E G_F / f_t'^2.
+  // h (E + E_p)/E_p (docs/model.md, identities) and 2 E G_F / f_t'^2.
   EXPECT_NEAR(r.snapBackSize1D, test::kSnapBackSize, 1e-12);
   EXPECT_NEAR(r.criticalSize, 2 * test::kE * test::kGF / (test::kFt * test::kFt), 1e-9);
   // The band's curve with nu = 0.2 (closed form in material/uniaxial_closed_form.hpp) is

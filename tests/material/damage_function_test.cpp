@@ -26,7 +26,7 @@ TEST(DamageFunction, SlopeMatchesFiniteDifferences) {
 }
 
 TEST(DamageFunction, InitialSofteningSlopeOfTheUniaxialLawIsMinusEp) {
-  // MODEL-NOTES: d sigma / d eps_L = -E_p at the peak, with sigma = x E eps, Y = E eps^2 / 2 = F(x).
+  // docs/model.md, identities: d sigma / d eps_L = -E_p at the peak, with sigma = x E eps, Y = E eps^2 / 2 = F(x).
   const double dx = 1e-7;
   const double x = 1.0 - dx;
   const double epsPeak = test::kFt / test::kE;

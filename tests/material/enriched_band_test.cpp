@@ -37,7 +37,7 @@ double closedFormPeak(double nu) {
 }
 
 TEST_P(EnrichedEnergy, DissipatesFractureEnergyForAnyEffectiveSize) {
-  // MODEL-NOTES identity: H x (dissipation per unit volume) = h int_0^1 F dD = G_F, whatever H
+  // Identity (docs/model.md): H x (dissipation per unit volume) = h int_0^1 F dD = G_F, whatever H
   // and whatever nu (the split removes nothing in uniaxial tension).
   const auto [ratio, nu] = GetParam();
   const double bigH = ratio * test::kH;
@@ -67,7 +67,7 @@ INSTANTIATE_TEST_SUITE_P(RatiosHOverh, EnrichedEnergy,
 TEST(EnrichedBand, UniaxialStressWithPoissonFollowsTheFrozenLateralBandClosedForm) {
   // With nu = 0.2 the band's lateral strain stays at its onset value -nu f_t'/E, so the band is
   // laterally constrained: its traction follows uniaxialBandResponse(x) (derived from Eqs. (11)-(12)),
-  // the macro strain is eps = sigma/E + w/H with w = h (eps_L - sigma/E) (MODEL-NOTES pitfall 4),
+  // the macro strain is eps = sigma/E + w/H with w = h (eps_L - sigma/E) (docs/model.md pitfall 4),
   // and the peak exceeds f_t' by up to 1/sqrt(1 - nu^2) (3.062 MPa).
   const double bigH = 10.0;
   EnrichedRun run(test::paperEnriched(), bigH);
@@ -84,7 +84,7 @@ TEST(EnrichedBand, UniaxialStressWithPoissonFollowsTheFrozenLateralBandClosedFor
   EXPECT_LT(worst, 1e-8);
   EXPECT_GT(run.peak, test::kFt * 1.015);
   EXPECT_LT(run.peak, test::kFt / std::sqrt(1.0 - test::kNu * test::kNu));
-  // Energy identity still holds (MODEL-NOTES): nothing is removed by the split.
+  // Energy identity still holds (docs/model.md, identities): nothing is removed by the split.
   double d2 = d;
   while (run.state.strain[0] < 0.2) {
     ASSERT_TRUE(run.step(d2));
@@ -154,7 +154,7 @@ TEST(EnrichedBand, RotatedPathGivesRotatedStressAndCrackNormal) {
 }
 
 TEST(EnrichedBand, OnsetIsSplitAtTheExactPoint) {
-  // MODEL-NOTES pitfall 1: one big increment through onset gives the same state as stopping
+  // docs/model.md pitfall 1: one big increment through onset gives the same state as stopping
   // exactly at onset and continuing (the onset strain is the root of Eq. (12) with D = 0).
   EnrichedBand model(test::paperEnriched(0.0));
   const auto size = EffectiveSize::fixed(10.0);

@@ -93,7 +93,7 @@ TEST(Extremes, CrackNormalStaysFixedWhenPrincipalAxesRotateByNinetyDegrees) {
 
 TEST(Extremes, VolumeFractionNearOne) {
   // f = 0.99: the point is almost all band; it must still converge through complete failure
-  // and dissipate G_F per H (MODEL-NOTES identity).
+  // and dissipate G_F per H (docs/model.md, identities).
   const double bigH = test::kH / 0.99;
   test::EnrichedRun run(test::paperEnriched(0.0), bigH);
   ASSERT_TRUE(run.step(test::kFt / test::kE));
@@ -128,7 +128,7 @@ TEST(Extremes, VolumeFractionNearZeroReportsTheSnapBackCleanly) {
 }
 
 TEST(Extremes, SnapBackSetsInJustAboveTheOneDimensionalSize) {
-  // MODEL-NOTES: C of Eq. (9) vanishes at H = h (E + E_p) / E_p (1D, nu = 0): just below it the
+  // docs/model.md, identities: C of Eq. (9) vanishes at H = h (E + E_p) / E_p (1D, nu = 0): just below it the
   // first softening increment converges, just above it is reported as a snap-back.
   for (const auto& [ratio, expected] : {std::pair{0.999, UpdateStatus::Converged}, std::pair{1.001, UpdateStatus::SnapBack}}) {
     EnrichedBand model(test::paperEnriched(0.0));

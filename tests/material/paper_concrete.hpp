@@ -6,7 +6,7 @@
 namespace ecm::test {
 
 inline constexpr double kE = 32000.0, kNu = 0.2, kFt = 3.0, kEp = 8.184, kN = 0.128, kH = 0.05, kGF = 0.11;
-// Snap-back size h (E + E_p) / E_p (MODEL-NOTES): 195.55 mm.
+// Snap-back size h (E + E_p) / E_p (docs/model.md, identities): 195.55 mm.
 inline constexpr double kSnapBackSize = kH * (kE + kEp) / kEp;
 
 inline BandDamageParams paperBand(double nu = kNu, Hypothesis hyp = Hypothesis::PlaneStress) {

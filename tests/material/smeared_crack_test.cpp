@@ -48,7 +48,7 @@ TEST(SmearedCrack, UnregularisedModelDissipatesTheBandEnergyPerVolume) {
 }
 
 TEST(SmearedCrack, NoRegularisationBeyondTheCriticalSize) {
-  // MODEL-NOTES: H_crit = 2 E G_F / f_t'^2 = 782.2 mm for the paper's concrete.
+  // docs/model.md, identities: H_crit = 2 E G_F / f_t'^2 = 782.2 mm for the paper's concrete.
   EXPECT_NEAR(criticalSmearedSize(test::kE, test::kFt, test::kGF), 782.2222, 1e-3);
   try {
     regularisedSofteningModulus({test::kE, test::kFt, 1.0, test::kN}, test::kGF, 800.0);

@@ -45,7 +45,7 @@ TEST(SnapBackRelease, LandsOnTheClosedFormFarBranchAndKeepsTheFractureEnergy) {
   // post-peak increment has no stable root. Report returns SnapBack, state untouched; Release
   // lands on the branch where eps(x) = sigma/E + w/H meets the strain again (closed form,
   // material/uniaxial_closed_form.hpp), then loading continues to failure and the dissipation
-  // per volume is (h/H) int F dD over the whole path (MODEL-NOTES identity).
+  // per volume is (h/H) int F dD over the whole path (docs/model.md, identities).
   const double bigH = 1000.0;
   const EnrichedBand m(test::paperEnriched(0.0));
   const EffectiveSize size = EffectiveSize::fixed(bigH);
