@@ -7,31 +7,34 @@ namespace ecm {
 
 namespace {
 
-// One attempt without sub-stepping.
-StepOutcome solveIncrement(const PointUpdate& update, const Tangent& a, const MaterialPoint& start, MaterialPoint& end,
-                           const Voigt& currentStress, const MixedTarget& t, const MixedControlSettings& s) {
+using FreeVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
+
+// The stress-controlled components' block of k solved against rhs: k_ss x = rhs_s.
+FreeVector solveFree(const Tangent& k, const Voigt& rhs, const std::vector<int>& free) {
+  const int m = static_cast<int>(free.size());
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3> kk(m, m);
+  FreeVector r(m);
+  for (int i = 0; i < m; ++i) {
+    r[i] = rhs[free[i]];
+    for (int j = 0; j < m; ++j) kk(i, j) = k(free[i], free[j]);
+  }
+  return kk.partialPivLu().solve(r);
+}
+
+std::vector<int> stressControlled(const MixedTarget& t) {
   std::vector<int> free;
   for (int i = 0; i < 3; ++i)
     if (t.control[i] == Control::Stress) free.push_back(i);
+  return free;
+}
+
+// One attempt without sub-stepping.
+StepOutcome solveIncrement(const PointUpdate& update, const Tangent& a, const MaterialPoint& start, MaterialPoint& end,
+                           const Voigt& currentStress, const MixedTarget& t, const MixedControlSettings& s) {
+  const std::vector<int> free = stressControlled(t);
   const int m = static_cast<int>(free.size());
   StepOutcome out;
-  Voigt d = t.strainIncrement;
-  // Elastic predictor for the stress-controlled components: a_ss d_s = dsigma_s - a_sk d_k.
-  const auto solveFree = [&](const Tangent& k, const Voigt& rhs) {
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3> kk(m, m);
-    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1> r(m);
-    for (int i = 0; i < m; ++i) {
-      r[i] = rhs[free[i]];
-      for (int j = 0; j < m; ++j) kk(i, j) = k(free[i], free[j]);
-    }
-    return Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>(kk.partialPivLu().solve(r));
-  };
-  if (m > 0) {
-    for (int i : free) d[i] = 0.0;
-    const Voigt rhs = t.stress - currentStress - a * d;
-    const auto x = solveFree(a, rhs);
-    for (int i = 0; i < m; ++i) d[free[i]] = x[i];
-  }
+  Voigt d = elasticMixedIncrement(a, currentStress, t);
   bool elasticFallback = false;
   double previous = INFINITY;
   for (int it = 0; it <= s.maxIterations; ++it) {
@@ -45,8 +48,8 @@ StepOutcome solveIncrement(const PointUpdate& update, const Tangent& a, const Ma
     out.controlResidual = res.norm();
     // The stress of the end strain cannot be closer than the round-off of that strain times
     // the stiffness, which a thin bulk makes huge (f near 1, docs/model.md).
-    const Voigt end = start.strain + d;
-    const double roundOff = EnrichedBand::kRoundOff * (out.result.tangent.cwiseAbs() * end.cwiseAbs()).maxCoeff();
+    const Voigt endStrain = start.strain + d;
+    const double roundOff = EnrichedBand::kRoundOff * (out.result.tangent.cwiseAbs() * endStrain.cwiseAbs()).maxCoeff();
     if (out.controlResidual <= s.tolerance + roundOff) {
       out.dissipation = out.result.dissipation;
       return out;
@@ -54,7 +57,7 @@ StepOutcome solveIncrement(const PointUpdate& update, const Tangent& a, const Ma
     // Newton with the consistent tangent; the elastic stiffness once it stops contracting.
     elasticFallback = elasticFallback || out.controlResidual > 0.5 * previous;
     previous = out.controlResidual;
-    const auto x = solveFree(elasticFallback ? a : out.result.tangent, res);
+    const FreeVector x = solveFree(elasticFallback ? a : out.result.tangent, res, free);
     for (int i = 0; i < m; ++i) d[free[i]] -= x[i];
   }
   out.result.status = UpdateStatus::NotConverged;
@@ -89,6 +92,16 @@ StepOutcome substepped(const PointUpdate& update, const Tangent& a, MaterialPoin
 }
 
 }  // namespace
+
+Voigt elasticMixedIncrement(const Tangent& k, const Voigt& currentStress, const MixedTarget& t) {
+  const std::vector<int> free = stressControlled(t);
+  Voigt d = t.strainIncrement;
+  if (free.empty()) return d;
+  for (int i : free) d[i] = 0.0;
+  const FreeVector x = solveFree(k, t.stress - currentStress - k * d, free);  // k_ss d_s = dsigma_s - k_sk d_k
+  for (std::size_t i = 0; i < free.size(); ++i) d[free[i]] = x[static_cast<int>(i)];
+  return d;
+}
 
 StepOutcome mixedControlStep(const PointUpdate& update, const Tangent& elastic, MaterialPoint& point,
                              const Voigt& currentStress, const MixedTarget& target, const MixedControlSettings& s) {

@@ -33,6 +33,11 @@ struct MixedControlSettings {
   int maxSubstepLevels = 10; // up to 2^10 sub-steps of a failing increment
 };
 
+// The strain increment that meets the target with the stiffness k (the elastic one for the
+// predictor): strain-controlled components as given, stress-controlled ones from
+// k_ss d_s = (target - current)_s - k_sk d_k. Exact for an elastic point.
+Voigt elasticMixedIncrement(const Tangent& k, const Voigt& currentStress, const MixedTarget& target);
+
 // One constitutive update of a point (normally Material::update at the point's H).
 using PointUpdate = std::function<UpdateResult(MaterialPoint& point, const Voigt& strainIncrement)>;
 

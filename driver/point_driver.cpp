@@ -68,28 +68,6 @@ class Runner {
     return true;
   }
 
-  // The elastic strain increment that meets the target (stress-controlled components solved
-  // with the elastic stiffness): the path of an intact point through the increment.
-  Voigt elasticIncrement(const MixedTarget& t) const {
-    Voigt d = t.strainIncrement;
-    std::vector<int> free;
-    for (int c = 0; c < 3; ++c)
-      if (t.control[c] == Control::Stress) free.push_back(c), d[c] = 0.0;
-    if (free.empty()) return d;
-    const Tangent& a = material_.stiffness();
-    const Voigt rhs = t.stress - stress_ - a * d;
-    const int m = static_cast<int>(free.size());
-    Eigen::MatrixXd block(m, m);
-    Eigen::VectorXd r(m);
-    for (int i = 0; i < m; ++i) {
-      r[i] = rhs[free[i]];
-      for (int j = 0; j < m; ++j) block(i, j) = a(free[i], free[j]);
-    }
-    const Eigen::VectorXd x = block.partialPivLu().solve(r);
-    for (int i = 0; i < m; ++i) d[free[i]] = x[i];
-    return d;
-  }
-
   struct BranchState {
     OpeningOutcome out;
     MaterialPoint point;
@@ -172,7 +150,7 @@ class Runner {
     const BandDamageLaw* law = material_.enriched() ? &material_.enriched()->bandLaw()
                                : material_.smeared() ? &material_.smeared()->law() : nullptr;
     if (!law || point_.band || point_.integrity < 1.0) return true;
-    const Voigt d = elasticIncrement(t);
+    const Voigt d = elasticMixedIncrement(material_.stiffness(), stress_, t);  // the intact point's path
     const std::optional<double> alpha = law->onsetFraction(point_.strain, d);
     if (!alpha || *alpha >= 1.0 || *alpha <= 0.0) return true;
     StepOutcome out;
