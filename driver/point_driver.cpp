@@ -18,6 +18,18 @@ double normalComponent(const Voigt& e, const Vec2& n) {
 
 double firstPrincipalStrain(const Voigt& e) { return principalStresses(Voigt(e[0], e[1], 0.5 * e[2])).first; }
 
+// The argument of the maximum of a unimodal f on [lo, hi], to `tolerance` (golden section).
+template <class F>
+double goldenMaximum(const F& f, double lo, double hi, double tolerance) {
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double a = hi - g * (hi - lo), b = lo + g * (hi - lo), fa = f(a), fb = f(b);
+  for (int it = 0; it < 80 && hi - lo > tolerance; ++it) {
+    if (fa > fb) hi = b, b = a, fb = fa, a = hi - g * (hi - lo), fa = f(a);
+    else lo = a, a = b, fa = fb, b = lo + g * (hi - lo), fb = f(b);
+  }
+  return 0.5 * (lo + hi);
+}
+
 class Runner {
  public:
   Runner(const PointScene& s, const RowObserver& o)
@@ -105,14 +117,8 @@ class Runner {
     for (std::size_t k = 1; k + 1 < js.size(); ++k)
       if (const double sk = stressAt(js[k], false); sk > topStress) topStress = sk, top = k;
     if (!(topStress > std::max(first, last))) return std::nullopt;
-    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-    double lo = js[top - 1], hi = js[top + 1], a = hi - g * (hi - lo), b = lo + g * (hi - lo);
-    double sa = stressAt(a, false), sb = stressAt(b, false);
-    for (int it = 0; it < 80 && hi - lo > 1e-12 * (to - j0); ++it) {
-      if (sa > sb) hi = b, b = a, sb = sa, a = hi - g * (hi - lo), sa = stressAt(a, false);
-      else lo = a, a = b, sa = sb, b = lo + g * (hi - lo), sb = stressAt(b, false);
-    }
-    if (!(stressAt(0.5 * (lo + hi), true) > std::max(first, last))) return std::nullopt;
+    const double peak = goldenMaximum([&](double j) { return stressAt(j, false); }, js[top - 1], js[top + 1], 1e-12 * (to - j0));
+    if (!(stressAt(peak, true) > std::max(first, last))) return std::nullopt;
     return best;
   }
 
@@ -344,16 +350,9 @@ class Runner {
       if (outcome) *outcome = out, *end = m;
       return out.step.converged() ? from.lambda + out.loadFactor : -INFINITY;
     };
-    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-    double lo = start, hi = past;
-    double j1 = hi - g * (hi - lo), j2 = lo + g * (hi - lo);
-    double l1 = loadFactor(j1, nullptr, nullptr), l2 = loadFactor(j2, nullptr, nullptr);
-    for (int it = 0; it < 80 && hi - lo > 1e-12 * model->bandWidth(); ++it) {
-      if (l1 > l2) hi = j2, j2 = j1, l2 = l1, j1 = hi - g * (hi - lo), l1 = loadFactor(j1, nullptr, nullptr);
-      else lo = j1, j1 = j2, l1 = l2, j2 = lo + g * (hi - lo), l2 = loadFactor(j2, nullptr, nullptr);
-    }
+    const double best =
+        goldenMaximum([&](double j) { return loadFactor(j, nullptr, nullptr); }, start, past, 1e-12 * model->bandWidth());
     restore(from);
-    const double best = 0.5 * (lo + hi);
     OpeningOutcome out;
     MaterialPoint end;
     if (best - start < 1e-9 * model->bandWidth() || !(loadFactor(best, &out, &end) > from.lambda)) {
