@@ -47,7 +47,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   p.softeningModulus = b.logRange(1e-3, 1e6);
   p.softeningExponent = 0.001 + 0.498 * b.unit();
   p.bandWidth = b.logRange(1e-4, 10.0);
-  const double bigH = p.bandWidth * (1.0 + b.logRange(1e-6, 1e6));
+  // The second band (enriched only) needs room for two bands: H >= 2 h (1 + 1e-6).
+  const bool twoBands = p.model == ecm::ModelKind::Enriched && b.unit() < 0.5;
+  if (twoBands) p.secondBand = ecm::SecondBandOption::Orthogonal;
+  const double bigH = (twoBands ? 2.0 : 1.0) * p.bandWidth * (1.0 + b.logRange(1e-6, 1e6));
   const ecm::Material m(p);
   const auto size_ = ecm::EffectiveSize::fixed(bigH);
   ecm::MaterialPoint point;
@@ -58,7 +61,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const ecm::UpdateResult r = m.update(point, d, size_);
     if (!r.converged()) {
       require(point.strain == before.strain && point.integrity == before.integrity &&
-                  point.band.has_value() == before.band.has_value(),
+                  point.band.has_value() == before.band.has_value() &&
+                  point.secondBand.has_value() == before.secondBand.has_value(),
               "failed update changed the state", p, bigH, i, r, point.strain);
       continue;
     }
@@ -66,6 +70,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             i, r, point.strain);
     require(r.dissipation >= 0.0, "negative dissipation", p, bigH, i, r, point.strain);
     require(point.damage() >= before.damage() && point.damage() <= 1.0, "damage decreased", p, bigH, i, r, point.strain);
+    require(!before.secondBand || (point.secondBand && point.secondBand->damage() >= before.secondBand->damage() &&
+                                   point.secondBand->damage() <= 1.0),
+            "second band's damage decreased", p, bigH, i, r, point.strain);
   }
   return 0;
 }

@@ -92,6 +92,12 @@ MaterialParams readInline(const YamlMap& m, const std::string& defaultName) {
     }
   }
   p.bandWidth = modelKey(m, "band_width", p.model == ModelKind::Enriched, model);
+  if (p.model == ModelKind::Enriched) {
+    p.secondBand = m.getEnumOr("second_band", {"off", "orthogonal"}, "off") == "orthogonal" ? SecondBandOption::Orthogonal
+                                                                                          : SecondBandOption::Off;
+  } else {
+    m.reject("second_band", "is used by model enriched only (model " + model + " has no band)");
+  }
   m.finish();
   try {
     p.validate();
@@ -160,6 +166,7 @@ std::string materialYaml(const MaterialParams& p) {
   if (!regularised) line(out, "softening_modulus", p.softeningModulus, "E_p (MPa)");
   line(out, "softening_exponent", p.softeningExponent, "n (-)");
   if (p.model == ModelKind::Enriched) line(out, "band_width", p.bandWidth, "h (mm)");
+  if (p.secondBand != SecondBandOption::Off) line(out, "second_band", toString(p.secondBand), "off | orthogonal");
   if (p.fractureEnergy > 0.0) line(out, "fracture_energy", p.fractureEnergy, "G_F (N/mm)");
   if (regularised) line(out, "regularised_for_size", p.regularisedForSize, "H (mm): E_p from G_F/H (crack band)");
   return out.str();

@@ -27,4 +27,7 @@ inline double drivingForceValue(const Voigt& s, const Tangent& c) {
   return 0.5 * (c(0, 0) * (p1 * p1 + p2 * p2) + 2.0 * c(0, 1) * p1 * p2);  // Eq. (12)
 }
 
+// d sigma_nn / d sigma_voigt for sigma_nn = n . sigma n: [n_x^2, n_y^2, 2 n_x n_y].
+inline Voigt normalProjector(const Vec2& n) { return {n[0] * n[0], n[1] * n[1], 2.0 * n[0] * n[1]}; }
+
 }  // namespace ecm

@@ -37,6 +37,8 @@ std::string effectiveSizeProblem(double effectiveSize, double bandWidth) {
   return msg.str();
 }
 
+const char* toString(SecondBandOption o) { return o == SecondBandOption::Orthogonal ? "orthogonal" : "off"; }
+
 void EnrichedParams::validate() const {
   band.validate();
   requireInRange("band_width h (mm)", bandWidth, 0.0, 1e300);
@@ -47,7 +49,9 @@ EnrichedBand::EnrichedBand(const EnrichedParams& p)
       bandWidth_(p.bandWidth),
       onsetBound_(0.5 * (law_.compliance()(0, 0) + std::abs(law_.compliance()(0, 1)))),
       shearModulus_(law_.stiffness()(2, 2)),
-      acousticRatio_((law_.stiffness()(0, 1) + law_.stiffness()(2, 2)) / law_.stiffness()(0, 0)) {}
+      acousticRatio_((law_.stiffness()(0, 1) + law_.stiffness()(2, 2)) / law_.stiffness()(0, 0)),
+      secondBand_(p.secondBand),
+      secondOnsetStress_(std::sqrt(2.0 * law_.onsetDrivingForce() / law_.compliance()(0, 0))) {}
 
 double EnrichedBand::intactDrivingForce(const Voigt& strain) const {
   return drivingForceValue(stiffness() * strain, law_.compliance());  // bitwise drivingForce().value
@@ -394,7 +398,8 @@ UpdateResult EnrichedBand::finishUpdate(BandState& b, Voigt& strain, const Voigt
 }
 
 UpdateResult EnrichedBand::updateIntactSlow(Voigt& strain, const Voigt& increment, const EffectiveSize& size,
-                                            std::optional<BandState>& onset, UpdateOptions options) const {
+                                            std::optional<BandState>& onset, UpdateOptions options,
+                                            std::optional<BandState>* secondOnset) const {
   UpdateResult r;
   r.stress = stiffness() * (strain + increment);
   r.tangent = stiffness();
@@ -411,7 +416,8 @@ UpdateResult EnrichedBand::updateIntactSlow(Voigt& strain, const Voigt& incremen
     throw ParameterError("effective size " + problem);
   b.volumeFraction = bandWidth_ / effectiveSize;  // Eq. (1)
   Voigt cracked = b.onsetStrain;
-  r = updateCracked(b, cracked, (1.0 - *alpha) * increment, options);
+  r = secondOnset ? updateCracked(b, nullptr, cracked, (1.0 - *alpha) * increment, size, *secondOnset, options)
+                  : updateCracked(b, cracked, (1.0 - *alpha) * increment, options);
   if (r.converged()) {
     strain = cracked;
     onset = b;
@@ -420,8 +426,18 @@ UpdateResult EnrichedBand::updateIntactSlow(Voigt& strain, const Voigt& incremen
 }
 
 UpdateResult EnrichedBand::update(EnrichedState& state, const Voigt& increment, const EffectiveSize& size) const {
-  if (state.band) return updateCracked(*state.band, state.strain, increment);
-  return updateIntact(state.strain, increment, size, state.band);
+  if (!opensSecondBand()) {
+    if (state.band) return updateCracked(*state.band, state.strain, increment);
+    return updateIntact(state.strain, increment, size, state.band);
+  }
+  if (state.band) {
+    std::optional<BandState> second;
+    const UpdateResult r = updateCracked(*state.band, state.secondBand ? &*state.secondBand : nullptr, state.strain,
+                                         increment, size, second);
+    if (second) state.secondBand = second;
+    return r;
+  }
+  return updateIntact(state.strain, increment, size, state.band, state.secondBand);
 }
 
 }  // namespace ecm

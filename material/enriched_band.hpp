@@ -19,9 +19,15 @@ inline double minimumEffectiveSize(double bandWidth) { return bandWidth * (1.0 +
 // Why an effective size is refused ("" if it is accepted), for the scene readers' messages.
 std::string effectiveSizeProblem(double effectiveSize, double bandWidth);
 
+// Whether a cracked point may open a second band across its first band's tangent
+// (docs/model.md, "A second band"). Off is the paper's model, bit for bit.
+enum class SecondBandOption { Off, Orthogonal };
+const char* toString(SecondBandOption o);
+
 struct EnrichedParams {
   BandDamageParams band;    // elastic constants (shared by bulk and band) and the band's damage law
   double bandWidth = 0.0;   // h (mm)
+  SecondBandOption secondBand = SecondBandOption::Off;
   void validate() const;
 };
 
@@ -39,8 +45,22 @@ struct BandState {
 };
 
 struct EnrichedState {
-  Voigt strain = Voigt::Zero();   // macroscopic strain
-  std::optional<BandState> band;  // present once the point has cracked
+  Voigt strain = Voigt::Zero();         // macroscopic strain
+  std::optional<BandState> band;        // present once the point has cracked
+  std::optional<BandState> secondBand;  // present once it has opened a second band (option on)
+};
+
+using Vec4 = Eigen::Vector4d;
+using Mat4 = Eigen::Matrix4d;
+
+// Both bands and the bulk of a two-band point at trial jumps ([u]_1, [u]_2) (docs/model.md,
+// "A second band"): Eqs. (2)-(9) with eps = f1 eps_L1 + f2 eps_L2 + (1 - f1 - f2) eps_b.
+struct TwoBandEquilibrium {
+  Voigt bandStrain[2] = {Voigt::Zero(), Voigt::Zero()};  // eps_Li, Eq. (3) for each band
+  BandResponse band[2];                                  // sigma_Li and a_Li, Eqs. (5), (11)
+  Voigt stress = Voigt::Zero();                          // the bulk stress, Eq. (4)
+  Vec4 residual = Vec4::Zero();                          // (sigma - sigma_Li) n_i, Eq. (6) on each band
+  Mat4 jacobian = Mat4::Zero();                          // K = -d residual / d([u]_1, [u]_2), Eq. (9)
 };
 
 // Both phases at a trial (strain, jump): what Newton on traction continuity needs.
@@ -88,7 +108,7 @@ class EnrichedBand {
       strain = end;
       return {s, stiffness()};
     }
-    return updateIntactSlow(strain, strainIncrement, size, onset, options);
+    return updateIntactSlow(strain, strainIncrement, size, onset, options, nullptr);
   }
   // A cheap sufficient test that the elastic stress s cannot reach onset:
   // Y <= (c11 + |c12|)/2 |sigma|^2 < F(D = 0). Most intact updates stop here, as cheap as elastic
@@ -98,6 +118,40 @@ class EnrichedBand {
   }
   UpdateResult updateCracked(BandState& band, Voigt& strain, const Voigt& strainIncrement,
                              UpdateOptions options = {}) const;
+
+  // The cracked update of a point under the second-band option (docs/model.md, "A second
+  // band"). `second` is the point's second band, nullptr while it has none; a second band that
+  // opens inside this increment (the increment is split at its exact onset) is returned in
+  // `secondOnset`. With the option off this is updateCracked(first, strain, increment, options).
+  UpdateResult updateCracked(BandState& first, BandState* second, Voigt& strain, const Voigt& strainIncrement,
+                             const EffectiveSize& size, std::optional<BandState>& secondOnset,
+                             UpdateOptions options = {}) const;
+  // An intact point under the option: updateIntact, and a second band that opens in the same
+  // increment is returned in `secondOnset`.
+  UpdateResult updateIntact(Voigt& strain, const Voigt& strainIncrement, const EffectiveSize& size,
+                            std::optional<BandState>& onset, std::optional<BandState>& secondOnset,
+                            UpdateOptions options = {}) const;
+  // The update of a point with two bands: elastic predictor with both damages frozen, then
+  // Newton with the loading bands on their envelopes, the active set rechecked until it holds.
+  UpdateResult updateTwoBands(BandState& first, BandState& second, Voigt& strain, const Voigt& strainIncrement,
+                              UpdateOptions options = {}) const;
+  bool opensSecondBand() const { return secondBand_ == SecondBandOption::Orthogonal; }
+  // sigma_tt = t1 . sigma t1, the bulk stress along the first band's tangent: the second band
+  // opens where it reaches secondBandOnsetStress() (Eq. (12) with D = 0 for sigma_tt t1 (x) t1).
+  double tangentialStress(const BandState& first, const Voigt& stress) const;
+  double secondBandOnsetStress() const { return secondOnsetStress_; }
+  // A second band opening at the converged one-band state (first, strain): normal t1, no jump,
+  // eps_L2 = the bulk strain (the stress stays continuous), f2 = h / H(t1). Throws ParameterError
+  // where 1 - f1 - f2 would leave the bulk thinner than the smallest size allows.
+  BandState openSecondBand(const BandState& first, const Voigt& strain, const EffectiveSize& size) const;
+  // Pure evaluation of both bands and the bulk at trial jumps, each band on its own surface.
+  TwoBandEquilibrium equilibrium(const BandState& first, const BandState& second,
+                                 const BandDamageLaw::LoadingSurface (&surfaces)[2], const Voigt& strain,
+                                 const Vec4& jumps, bool loadingTangent) const;
+  // Consistent tangent of a two-band point at a converged equilibrium (Eq. (10) extended).
+  Tangent consistentTangent(const BandState& first, const BandState& second, const Mat4& jacobian) const;
+  // The stress of a two-band point at its committed state.
+  Voigt stress(const BandState& first, const BandState& second, const Voigt& strain) const;
 
   // Snap-back release: at the end strain of an increment whose loading branch turned back, the
   // band's damage grows at fixed strain until traction continuity (6) holds with consistent
@@ -178,6 +232,23 @@ class EnrichedBand {
   static constexpr double kNeutralLoading = 1e-8;
 
  private:
+  // The two-band release: the damage of the band that snapped back is scanned down at the
+  // end strain (the other band follows its own law) to the first stable consistent state.
+  UpdateResult releaseTwoBands(BandState& first, BandState& second, Voigt& strain, const Voigt& increment,
+                               bool tangent) const;
+  // The loading branch of two bands at `eps`, from the jumps `jumps`, with the given bands
+  // loading (on their envelopes) and the others frozen at their integrity.
+  struct TwoBandSolve {
+    TwoBandEquilibrium eq;
+    Vec4 jumps = Vec4::Zero();
+    bool converged = false;
+    bool sawUnstableBranch = false;
+    int iterations = 0;
+  };
+  TwoBandSolve solveTwoBands(const BandState& first, const BandState& second,
+                             const BandDamageLaw::LoadingSurface (&surfaces)[2], const Voigt& eps, Vec4 jumps,
+                             double tol) const;
+  double twoBandTolerance(const BandState& first, const BandState& second, const Voigt& eps) const;
   // The cracked update proper: elastic predictor, then damage corrector on the envelope.
   UpdateResult predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent,
                               unsigned stressControlled = 0) const;
@@ -185,7 +256,8 @@ class EnrichedBand {
   UpdateResult finishUpdate(BandState& b, Voigt& strain, const Voigt& eps, const Vec2& jump, const BandEquilibrium& eq,
                             double thresholdOld, double tol, bool tangent, UpdateResult& res) const;
   UpdateResult updateIntactSlow(Voigt& strain, const Voigt& strainIncrement, const EffectiveSize& size,
-                                std::optional<BandState>& onset, UpdateOptions options) const;
+                                std::optional<BandState>& onset, UpdateOptions options,
+                                std::optional<BandState>* secondOnset) const;
   static constexpr int kMaxReleaseSteps = 2000;     // scan steps of the release, x0 * ratio^k
   static constexpr double kReleaseScanRatio = 0.9;  // (0.9^2000 ~ 1e-92: down to a failed band)
 
@@ -194,6 +266,8 @@ class EnrichedBand {
   double onsetBound_;  // (c11 + |c12|)/2: Y <= onsetBound_ |sigma|^2, a cheap no-onset test
   double shearModulus_;   // mu = a_33 (in-plane isotropic a: a_11 = lambda + 2 mu, a_12 = lambda)
   double acousticRatio_;  // (lambda + mu) / (lambda + 2 mu)
+  SecondBandOption secondBand_;
+  double secondOnsetStress_;  // sigma_tt at which Eq. (12) with D = 0 is met: sqrt(2 F(1) / c11)
 };
 
 }  // namespace ecm

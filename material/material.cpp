@@ -1,5 +1,7 @@
 #include "material/material.hpp"
 
+#include <string>
+
 #include "material/parameter_check.hpp"
 
 namespace ecm {
@@ -14,6 +16,9 @@ const char* toString(ModelKind k) {
 }
 
 void MaterialParams::validate() const {
+  if (model != ModelKind::Enriched && secondBand != SecondBandOption::Off)
+    throw ParameterError(std::string("second_band: ") + toString(secondBand) + " needs the enriched model (model " +
+                         toString(model) + " has no band)");
   elastic.validate();
   requireInRange("density (t/mm^3)", density, 0.0, 1e300, true);
   if (model == ModelKind::LinearElastic) return;
@@ -70,13 +75,21 @@ UpdateResult Material::update(MaterialPoint& point, const Voigt& increment, cons
       return r;
     }
     UpdateResult operator()(const EnrichedBand& m) const {
-      return p.band ? m.updateCracked(*p.band, p.strain, d, options) : m.updateIntact(p.strain, d, size, p.band, options);
+      if (!m.opensSecondBand())
+        return p.band ? m.updateCracked(*p.band, p.strain, d, options) : m.updateIntact(p.strain, d, size, p.band, options);
+      if (!p.band) return m.updateIntact(p.strain, d, size, p.band, p.secondBand, options);
+      std::optional<BandState> opened;
+      const UpdateResult r = m.updateCracked(*p.band, p.secondBand ? &*p.secondBand : nullptr, p.strain, d, size, opened, options);
+      if (opened) p.secondBand = opened;
+      return r;
     }
   };
   return std::visit(Visitor{point, increment, size, options}, model_);
 }
 
 Voigt Material::stress(const MaterialPoint& point) const {
+  if (const auto* e = enriched(); e && point.band && point.secondBand)
+    return e->stress(*point.band, *point.secondBand, point.strain);
   if (const auto* e = enriched(); e && point.band) return e->equilibrium(*point.band, point.strain, point.band->jump, false).stress;
   const double x = params_.model == ModelKind::SmearedCrack ? point.integrity : 1.0;
   return x * (stiffness_ * point.strain);

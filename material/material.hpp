@@ -24,12 +24,13 @@ struct MaterialParams {
   double softeningModulus = 0.0;   // E_p (MPa)
   double softeningExponent = 0.0;  // n
   double bandWidth = 0.0;          // h (mm), enriched model only
+  SecondBandOption secondBand = SecondBandOption::Off;  // enriched model only (docs/model.md)
   double fractureEnergy = 0.0;     // G_F (N/mm): informational, or the target of smeared regularisation
   // SmearedCrack only: if > 0, E_p is replaced by the crack-band value for this element size H.
   double regularisedForSize = 0.0;
 
   BandDamageParams band() const { return {elastic, tensileStrength, softeningModulus, softeningExponent}; }
-  EnrichedParams enriched() const { return {band(), bandWidth}; }
+  EnrichedParams enriched() const { return {band(), bandWidth, secondBand}; }
   void validate() const;  // throws ParameterError naming the parameter, value and range
 };
 
@@ -37,7 +38,8 @@ struct MaterialParams {
 struct MaterialPoint {
   Voigt strain = Voigt::Zero();
   double integrity = 1.0;         // SmearedCrack: x = 1 - D of the whole point
-  std::optional<BandState> band;  // Enriched: present once cracked
+  std::optional<BandState> band;        // Enriched: present once cracked
+  std::optional<BandState> secondBand;  // Enriched with the second-band option: once it opened
   double damage() const { return band ? band->damage() : 1.0 - integrity; }
 };
 

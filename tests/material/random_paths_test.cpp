@@ -43,16 +43,21 @@ struct PathGenerator {
 
 double intactDrivingForce(const Voigt& stress, const Tangent& compliance) { return drivingForce(stress, compliance).value; }
 
+bool sameBand(const std::optional<BandState>& a, const std::optional<BandState>& b) {
+  if (a.has_value() != b.has_value()) return false;
+  return !a || (a->jump == b->jump && a->integrity == b->integrity);
+}
+
 bool samePoint(const MaterialPoint& a, const MaterialPoint& b) {
-  if (a.strain != b.strain || a.integrity != b.integrity || a.band.has_value() != b.band.has_value()) return false;
-  return !a.band || (a.band->jump == b.band->jump && a.band->integrity == b.band->integrity);
+  if (a.strain != b.strain || a.integrity != b.integrity) return false;
+  return sameBand(a.band, b.band) && sameBand(a.secondBand, b.secondBand);
 }
 
 struct Counts {
-  int converged = 0, failed = 0, cracked = 0, tangentChecks = 0;
+  int converged = 0, failed = 0, cracked = 0, tangentChecks = 0, twoBands = 0, twoBandTangentChecks = 0;
 };
 
-void checkModel(ModelKind kind, Hypothesis hyp, std::uint64_t seed, Counts& counts) {
+void checkModel(ModelKind kind, Hypothesis hyp, SecondBandOption option, std::uint64_t seed, Counts& counts) {
   PathGenerator gen(seed);
   MaterialParams p;
   p.model = kind;
@@ -61,12 +66,15 @@ void checkModel(ModelKind kind, Hypothesis hyp, std::uint64_t seed, Counts& coun
   p.softeningModulus = test::kEp;
   p.softeningExponent = test::kN;
   p.bandWidth = test::kH;
+  p.secondBand = option;
   const Material m(p);
   const Tangent compliance = elasticCompliance(p.elastic);
   const double onsetY = test::kFt * test::kFt / (2.0 * test::kE);
   for (int path = 0; path < 1000; ++path) {
-    // H log-uniform over 0.06 mm ... 2 m: some points lie beyond the snap-back size.
-    const auto size = EffectiveSize::fixed(std::pow(10.0, gen.uniform(std::log10(0.06), std::log10(2000.0))));
+    // H log-uniform over 0.06 mm (0.11 mm: room for two bands) ... 2 m: some points lie beyond
+    // the snap-back size.
+    const double smallest = option == SecondBandOption::Off ? 0.06 : 0.11;
+    const auto size = EffectiveSize::fixed(std::pow(10.0, gen.uniform(std::log10(smallest), std::log10(2000.0))));
     MaterialPoint point;
     for (const Voigt& d : gen.path(40)) {
       const MaterialPoint before = point;
@@ -84,6 +92,18 @@ void checkModel(ModelKind kind, Hypothesis hyp, std::uint64_t seed, Counts& coun
       ASSERT_GE(point.damage(), before.damage());
       if (kind == ModelKind::SmearedCrack) {
         ASSERT_LE(intactDrivingForce(r.stress, compliance), onsetY * (1.0 + 1e-9));
+      } else if (point.secondBand) {
+        // Continuity, Eq. (6), on both bands; each band's stress inside the strength envelope.
+        const BandDamageLaw::LoadingSurface frozen[2] = {{point.band->integrity, INFINITY},
+                                                         {point.secondBand->integrity, INFINITY}};
+        Vec4 jumps;
+        jumps << point.band->jump, point.secondBand->jump;
+        const TwoBandEquilibrium eq = m.enriched()->equilibrium(*point.band, *point.secondBand, frozen, point.strain, jumps, false);
+        ASSERT_LE(eq.residual.norm(), 1e-9 * test::kFt + 1e-13 * (m.stiffness() * point.strain).norm());
+        for (const BandResponse& b : eq.band) ASSERT_LE(intactDrivingForce(b.stress, compliance), onsetY * (1.0 + 1e-9));
+        ASSERT_LE((eq.stress - r.stress).norm(), 1e-9 * test::kFt);
+        ASSERT_LE(point.secondBand->damage(), 1.0);
+        if (before.secondBand) ASSERT_GE(point.secondBand->damage(), before.secondBand->damage());
       } else if (point.band) {
         const BandEquilibrium eq = m.enriched()->equilibrium(*point.band, point.strain, point.band->jump, false);
         ASSERT_LE(eq.residual.norm(), 1e-9 * test::kFt + 1e-13 * (m.stiffness() * point.strain).norm());
@@ -105,10 +125,24 @@ void checkModel(ModelKind kind, Hypothesis hyp, std::uint64_t seed, Counts& coun
           smooth = ra.converged() && rb.converged() && a.damage() > before.damage() && b.damage() > before.damage();
           const Principal pa = principalStresses(m.stiffness() * (a.band ? a.band->onsetStrain : a.strain));
           smooth = smooth && std::abs(pa.second) > 1e-6 * std::abs(pa.first);
+          // Two bands: the same bands in all three updates, the second loading or not in all
+          // three, and its Y away from its kink (a zero principal effective stress at onset).
+          const auto secondLoads = [&](const MaterialPoint& q) {
+            return q.secondBand && before.secondBand && q.secondBand->integrity < before.secondBand->integrity;
+          };
+          smooth = smooth && a.secondBand.has_value() == before.secondBand.has_value() &&
+                   b.secondBand.has_value() == before.secondBand.has_value() &&
+                   point.secondBand.has_value() == before.secondBand.has_value() && secondLoads(a) == secondLoads(point) &&
+                   secondLoads(b) == secondLoads(point);
+          if (smooth && a.secondBand) {
+            const Principal p2 = principalStresses(m.stiffness() * a.secondBand->onsetStrain);
+            smooth = std::abs(p2.second) > 1e-6 * std::abs(p2.first);
+          }
           fd.col(j) = (ra.stress - rb.stress) / (2.0 * delta);
         }
         if (smooth) {
           ++counts.tangentChecks;
+          if (point.secondBand) ++counts.twoBandTangentChecks;
           const double err = (r.tangent - fd).cwiseAbs().maxCoeff() / r.tangent.cwiseAbs().maxCoeff();
           EXPECT_LT(err, 1e-5) << "path " << path << ", H = " << size.value << " mm, D = " << point.damage()
                                << ", increment " << d.transpose();
@@ -116,6 +150,7 @@ void checkModel(ModelKind kind, Hypothesis hyp, std::uint64_t seed, Counts& coun
       }
     }
     if (point.damage() > 0.0) ++counts.cracked;
+    if (point.secondBand) ++counts.twoBands;
   }
 }
 
@@ -124,7 +159,7 @@ class RandomPaths : public ::testing::TestWithParam<std::tuple<ModelKind, Hypoth
 TEST_P(RandomPaths, KeepThePhysicsOnEveryPath) {
   const auto [kind, hyp] = GetParam();
   Counts c;
-  checkModel(kind, hyp, 20261127 + static_cast<int>(kind) * 10 + static_cast<int>(hyp), c);
+  checkModel(kind, hyp, SecondBandOption::Off, 20261127 + static_cast<int>(kind) * 10 + static_cast<int>(hyp), c);
   // The paths must actually exercise cracking and the tangent check (else the test is vacuous).
   EXPECT_GT(c.cracked, 200);
   EXPECT_GT(c.tangentChecks, 100);
@@ -143,6 +178,24 @@ INSTANTIATE_TEST_SUITE_P(Models, RandomPaths,
                            return std::string(toString(std::get<0>(info.param))) +
                                   (std::get<1>(info.param) == Hypothesis::PlaneStress ? "_plane_stress" : "_plane_strain");
                          });
+
+// The same checks with the second-band option (docs/model.md, "A second band").
+class RandomPathsTwoBands : public ::testing::TestWithParam<Hypothesis> {};
+
+TEST_P(RandomPathsTwoBands, KeepThePhysicsOnEveryPath) {
+  Counts c;
+  checkModel(ModelKind::Enriched, GetParam(), SecondBandOption::Orthogonal, 20261201 + static_cast<int>(GetParam()), c);
+  EXPECT_GT(c.cracked, 200);
+  EXPECT_GT(c.twoBands, 50) << "the paths must open second bands";
+  EXPECT_GT(c.twoBandTangentChecks, 20) << "the tangent must be checked on two-band points";
+  EXPECT_GT(c.tangentChecks, 100);
+  RecordProperty("two_bands", c.twoBands);
+  RecordProperty("two_band_tangent_checks", c.twoBandTangentChecks);
+  RecordProperty("failed", c.failed);
+}
+
+INSTANTIATE_TEST_SUITE_P(Hypotheses, RandomPathsTwoBands, ::testing::Values(Hypothesis::PlaneStress, Hypothesis::PlaneStrain),
+                         [](const auto& info) { return info.param == Hypothesis::PlaneStress ? "plane_stress" : "plane_strain"; });
 
 }  // namespace
 }  // namespace ecm

@@ -1,0 +1,389 @@
+// The second band of an enriched point (docs/model.md, "A second band"). A cracked point opens
+// a band across its first band's tangent t1 once the bulk stress along t1 meets the onset
+// criterion. Then eps = f1 eps_L1 + f2 eps_L2 + (1 - f1 - f2) eps_b, and traction continuity,
+// Eq. (6), holds on both bands. The one-band update (enriched_band.cpp) is untouched: a point
+// pays for this file only once it has two bands, or while the option looks for the trigger.
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "material/driving_force.hpp"
+#include "material/enriched_band.hpp"
+#include "material/parameter_check.hpp"
+
+namespace ecm {
+
+namespace {
+
+using Surface = BandDamageLaw::LoadingSurface;
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+constexpr int kActiveSetPasses = 6;
+
+// The smallest real part of K's eigenvalues: > 0 where the two-band branch is locally unique
+// and stable (Eq. (9) extended).
+double smallestRealPart(const Mat4& k) { return Eigen::EigenSolver<Mat4>(k, false).eigenvalues().real().minCoeff(); }
+
+// The band's damage frozen at x: the law stays elastic with a_L = x a (a secant evaluation).
+Surface frozenAt(double x) { return {x, kInfinity}; }
+
+}  // namespace
+
+double EnrichedBand::tangentialStress(const BandState& first, const Voigt& stress) const {
+  return normalProjector(first.slidingDirection()).dot(stress);
+}
+
+BandState EnrichedBand::openSecondBand(const BandState& first, const Voigt& strain, const EffectiveSize& size) const {
+  BandState b;
+  b.crackNormal = canonicalNormal(first.slidingDirection());
+  const double f1 = first.volumeFraction;
+  const Voigt firstBandStrain = first.onsetStrain + jumpToStrain(first.crackNormal) * first.jump / bandWidth_;  // Eq. (3)
+  b.onsetStrain = (strain - f1 * firstBandStrain) / (1.0 - f1);  // eps_L2 = eps_b of Eq. (2): sigma continuous
+  const double effectiveSize = size(b.crackNormal);
+  b.volumeFraction = bandWidth_ / effectiveSize;  // Eq. (1) for the second band's normal
+  const double bulk = 1.0 - f1 - b.volumeFraction;
+  if (!(bulk >= kMinimumSizeMargin / (1.0 + kMinimumSizeMargin))) {
+    std::ostringstream msg;
+    msg.precision(10);
+    msg << "second band: f1 + f2 = " << f1 + b.volumeFraction << " leaves a bulk fraction 1 - f1 - f2 = " << bulk
+        << " (H = " << effectiveSize << " mm for h = " << bandWidth_
+        << " mm); two bands need H >= 2 h (1 + 1e-6) (docs/model.md)";
+    throw ParameterError(msg.str());
+  }
+  return b;
+}
+
+TwoBandEquilibrium EnrichedBand::equilibrium(const BandState& first, const BandState& second,
+                                             const Surface (&surfaces)[2], const Voigt& strain, const Vec4& jumps,
+                                             bool loadingTangent) const {
+  const JumpMap n[2] = {jumpToStrain(first.crackNormal), jumpToStrain(second.crackNormal)};
+  const double f[2] = {first.volumeFraction, second.volumeFraction};
+  const double bulk = 1.0 - f[0] - f[1];
+  const Tangent& a = stiffness();
+  TwoBandEquilibrium eq;
+  eq.bandStrain[0] = first.onsetStrain + n[0] * jumps.head<2>() / bandWidth_;   // Eq. (3)
+  eq.bandStrain[1] = second.onsetStrain + n[1] * jumps.tail<2>() / bandWidth_;
+  eq.band[0] = law_.evaluate(surfaces[0], eq.bandStrain[0], loadingTangent);   // Eqs. (5), (11)-(13)
+  eq.band[1] = law_.evaluate(surfaces[1], eq.bandStrain[1], loadingTangent);
+  eq.stress = a * (strain - f[0] * eq.bandStrain[0] - f[1] * eq.bandStrain[1]) / bulk;  // Eqs. (2), (4)
+  for (int i = 0; i < 2; ++i) {
+    eq.residual.segment<2>(2 * i) = n[i].transpose() * (eq.stress - eq.band[i].stress);  // Eq. (6)
+    for (int j = 0; j < 2; ++j) {
+      Mat2 block = n[i].transpose() * (f[j] / bulk * a) * n[j];  // Eq. (9): the bulk couples the bands
+      if (i == j) block += n[i].transpose() * eq.band[i].tangent * n[i];
+      eq.jacobian.block<2, 2>(2 * i, 2 * j) = block / bandWidth_;
+    }
+  }
+  return eq;
+}
+
+Tangent EnrichedBand::consistentTangent(const BandState& first, const BandState& second, const Mat4& jacobian) const {
+  const JumpMap n[2] = {jumpToStrain(first.crackNormal), jumpToStrain(second.crackNormal)};
+  const double f[2] = {first.volumeFraction, second.volumeFraction};
+  const double bulk = 1.0 - f[0] - f[1];
+  const Tangent& a = stiffness();
+  Eigen::Matrix<double, 4, 3> g;
+  for (int i = 0; i < 2; ++i) g.block<2, 3>(2 * i, 0) = n[i].transpose() * a / bulk;  // d residual / d eps, Eq. (8)
+  const Eigen::Matrix<double, 4, 3> dJumps = jacobian.partialPivLu().solve(g);
+  Tangent s = Tangent::Identity();
+  for (int j = 0; j < 2; ++j) s -= f[j] / bandWidth_ * n[j] * dJumps.block<2, 3>(2 * j, 0);
+  return a / bulk * s;  // Eq. (10)
+}
+
+Voigt EnrichedBand::stress(const BandState& first, const BandState& second, const Voigt& strain) const {
+  const Surface frozen[2] = {frozenAt(first.integrity), frozenAt(second.integrity)};
+  Vec4 jumps;
+  jumps << first.jump, second.jump;
+  return equilibrium(first, second, frozen, strain, jumps, false).stress;
+}
+
+double EnrichedBand::twoBandTolerance(const BandState& first, const BandState& second, const Voigt& eps) const {
+  const double f = first.volumeFraction + second.volumeFraction;
+  return kRelativeTolerance * tensileStrength() + kRoundOff * (stiffness() * eps).norm() * std::max(1.0, f / (1.0 - f));
+}
+
+EnrichedBand::TwoBandSolve EnrichedBand::solveTwoBands(const BandState& first, const BandState& second,
+                                                       const Surface (&surfaces)[2], const Voigt& eps, Vec4 jumps,
+                                                       double tol) const {
+  // Newton with line search on Eq. (6) for both bands; frozen bands make it linear in their jumps.
+  TwoBandSolve s;
+  s.eq = equilibrium(first, second, surfaces, eps, jumps, true);
+  double rn = s.eq.residual.norm();
+  for (; rn > tol && s.iterations < kMaxIterations; ++s.iterations) {
+    const Vec4 step = s.eq.jacobian.partialPivLu().solve(s.eq.residual);
+    if (!step.allFinite()) break;
+    double alpha = 1.0;
+    TwoBandEquilibrium trial;
+    for (int ls = 0; ls < 40; ++ls, alpha *= 0.5) {
+      trial = equilibrium(first, second, surfaces, eps, jumps + alpha * step, true);
+      if (trial.residual.norm() < (1.0 - 1e-4 * alpha) * rn) break;
+    }
+    jumps += alpha * step;
+    s.eq = trial;
+    rn = s.eq.residual.norm();
+    if ((s.eq.band[0].loading || s.eq.band[1].loading) && !(smallestRealPart(s.eq.jacobian) > 0.0))
+      s.sawUnstableBranch = true;
+  }
+  s.jumps = jumps;
+  s.converged = rn <= tol;
+  return s;
+}
+
+UpdateResult EnrichedBand::updateTwoBands(BandState& first, BandState& second, Voigt& strain, const Voigt& increment,
+                                          UpdateOptions options) const {
+  const Voigt eps = strain + increment;
+  const double tol = twoBandTolerance(first, second, eps);
+  BandState* bands[2] = {&first, &second};
+  UpdateResult res;
+  const auto fail = [&](UpdateStatus status, double residual) {
+    res.status = status;
+    res.residual = residual;
+    return options.snapBack == SnapBackPolicy::Release ? releaseTwoBands(first, second, strain, increment, options.tangent)
+                                                       : res;
+  };
+
+  // 1. Elastic predictor: both damages frozen, Eq. (6) linear in the jumps.
+  const Surface frozen[2] = {frozenAt(first.integrity), frozenAt(second.integrity)};
+  Vec4 start;
+  start << first.jump, second.jump;
+  const TwoBandSolve predictor = solveTwoBands(first, second, frozen, eps, start, tol);
+  res.iterations = predictor.iterations;
+  if (!predictor.converged) return fail(UpdateStatus::NotConverged, predictor.eq.residual.norm());
+  const Surface surface[2] = {law_.loadingSurface(first.integrity), law_.loadingSurface(second.integrity)};
+  bool loading[2];
+  for (int i = 0; i < 2; ++i) loading[i] = predictor.eq.band[i].drivingForce > surface[i].threshold;
+
+  // 2. Damage corrector: the loading bands on their envelopes, the others frozen; a band whose
+  //    root heals unloads, a frozen band whose Y passes its surface loads, until the set holds.
+  TwoBandSolve sol = predictor;
+  bool settled = !loading[0] && !loading[1];
+  for (int pass = 0; pass < kActiveSetPasses && !settled; ++pass) {
+    const Surface s[2] = {loading[0] ? BandDamageLaw::envelope(surface[0]) : frozen[0],
+                          loading[1] ? BandDamageLaw::envelope(surface[1]) : frozen[1]};
+    sol = solveTwoBands(first, second, s, eps, predictor.jumps, tol);
+    res.iterations += sol.iterations;
+    if (!sol.converged)
+      return fail(sol.sawUnstableBranch ? UpdateStatus::SnapBack : UpdateStatus::NotConverged, sol.eq.residual.norm());
+    settled = true;
+    for (int i = 0; i < 2; ++i) {
+      const BandResponse& r = sol.eq.band[i];
+      if (loading[i] && !(r.integrity < bands[i]->integrity)) {
+        loading[i] = false, settled = false;  // the other band's loading unloads it, or neutral: frozen at x0
+      } else if (!loading[i] && r.drivingForce > surface[i].threshold * (1.0 + kNeutralLoading)) {
+        loading[i] = true, settled = false;
+      }
+    }
+  }
+  // A set that never holds (a band loads frozen and heals loading) has no loading branch
+  // under strain control: for one band that is the snap-back of enriched_band.cpp.
+  if (!settled) return fail(UpdateStatus::SnapBack, sol.eq.residual.norm());
+  if (loading[0] || loading[1]) {
+    // Stable under the caller's control: K of Eq. (9) extended, and under mixed control the
+    // stress-controlled block of D of Eq. (10) (docs/model.md).
+    const double scale = bandWidth_ / (shearModulus_ * (1.0 / (1.0 - first.volumeFraction - second.volumeFraction)));
+    bool stable = smallestRealPart(sol.eq.jacobian) * scale > -kMarginFloor;
+    if (stable && options.stressControlled != 0) {
+      const Tangent d = consistentTangent(first, second, sol.eq.jacobian);
+      Eigen::MatrixXd block(3, 3);
+      int m = 0, idx[3];
+      for (int i = 0; i < 3; ++i)
+        if (options.stressControlled & (1u << i)) idx[m++] = i;
+      block.resize(m, m);
+      for (int i = 0; i < m; ++i)
+        for (int j = 0; j < m; ++j) block(i, j) = d(idx[i], idx[j]);
+      stable = block.eigenvalues().real().minCoeff() / law_.law().youngsModulus > -kMarginFloor;
+    }
+    if (!stable) return fail(UpdateStatus::SnapBack, sol.eq.residual.norm());
+  }
+
+  // 3. Commit: f_i int Y_i dD_i on each loading band (on the branch F(x_new) = Y).
+  res.status = UpdateStatus::Converged;
+  res.residual = sol.eq.residual.norm();
+  res.stress = sol.eq.stress;
+  if (options.tangent) res.tangent = consistentTangent(first, second, sol.eq.jacobian);
+  for (int i = 0; i < 2; ++i) {
+    BandState& b = *bands[i];
+    if (loading[i]) {
+      res.dissipation += b.volumeFraction * law_.dissipation(b.integrity, sol.eq.band[i].integrity, surface[i].threshold,
+                                                             sol.eq.band[i].drivingForce);
+      b.integrity = sol.eq.band[i].integrity;
+    }
+    b.jump = sol.jumps.segment<2>(2 * i);
+  }
+  strain = eps;
+  return res;
+}
+
+UpdateResult EnrichedBand::releaseTwoBands(BandState& first, BandState& second, Voigt& strain, const Voigt& increment,
+                                           bool tangent) const {
+  // As releaseSnapBack for one band: at the end strain, the damage of the band that loads most
+  // (the larger Y / F(x0) at the predictor) is scanned down geometrically; the other band follows
+  // its envelope if it loads too, else stays frozen. g(x) = Y(x) / F(x) - 1 changes sign at a
+  // consistent state; the first one the regular update confirms stable is taken.
+  const Voigt eps = strain + increment;
+  const double tol = twoBandTolerance(first, second, eps);
+  const BandState* bands[2] = {&first, &second};
+  const Surface surface[2] = {law_.loadingSurface(first.integrity), law_.loadingSurface(second.integrity)};
+  Vec4 jumps;
+  jumps << first.jump, second.jump;
+  const Surface frozen[2] = {frozenAt(first.integrity), frozenAt(second.integrity)};
+  const TwoBandSolve predictor = solveTwoBands(first, second, frozen, eps, jumps, tol);
+  UpdateResult res;
+  res.status = UpdateStatus::SnapBack;
+  if (!predictor.converged) return res;
+  double ratio[2];
+  for (int i = 0; i < 2; ++i) ratio[i] = predictor.eq.band[i].drivingForce / surface[i].threshold;
+  const int scanned = ratio[1] > ratio[0] ? 1 : 0, other = 1 - scanned;
+  const Surface otherSurface = ratio[other] > 1.0 ? BandDamageLaw::envelope(surface[other]) : frozen[other];
+
+  struct Probe {
+    double x = 1.0, g = 0.0;
+    TwoBandSolve solve;
+  };
+  Vec4 guess = predictor.jumps;
+  const auto probe = [&](double x) {
+    Probe p;
+    p.x = x;
+    Surface s[2];
+    s[scanned] = frozenAt(x);
+    s[other] = otherSurface;
+    p.solve = solveTwoBands(first, second, s, eps, guess, tol);
+    p.g = p.solve.converged ? p.solve.eq.band[scanned].drivingForce / damageFunction(law_.law(), x) - 1.0
+                            : std::numeric_limits<double>::quiet_NaN();
+    if (p.solve.converged) guess = p.solve.jumps;
+    return p;
+  };
+  Probe hi = probe(bands[scanned]->integrity);
+  for (int k = 0; k < kMaxReleaseSteps && hi.x > 1e-300; ++k) {
+    Probe lo = probe(hi.x * kReleaseScanRatio);
+    ++res.iterations;
+    if (!(lo.g <= 0.0) || !(hi.g > 0.0)) {
+      hi = lo;
+      continue;
+    }
+    double la = std::log(lo.x), lb = std::log(hi.x), ga = lo.g, gb = hi.g;
+    Probe root = lo;
+    int side = 0;
+    for (int it = 0; it < 100 && lb - la > 1e-15 * std::abs(lb) + 1e-300; ++it) {  // Illinois in log x
+      const double lc = (la * gb - lb * ga) / (gb - ga);
+      root = probe(std::exp(lc));
+      ++res.iterations;
+      if (!(std::abs(root.g) > 1e-14)) break;
+      if (root.g < 0.0) {
+        la = lc, ga = root.g;
+        if (side == -1) gb *= 0.5;
+        side = -1;
+      } else {
+        lb = lc, gb = root.g;
+        if (side == +1) ga *= 0.5;
+        side = +1;
+      }
+    }
+    if (!root.solve.converged) {
+      hi = lo;
+      continue;
+    }
+    // Polish with the regular update at zero increment: continuity, consistency, stability.
+    BandState trial[2] = {first, second};
+    for (int i = 0; i < 2; ++i) trial[i].jump = root.solve.jumps.segment<2>(2 * i);
+    trial[scanned].integrity = root.x;
+    if (otherSurface.envelope) trial[other].integrity = std::min(trial[other].integrity, root.solve.eq.band[other].integrity);
+    Voigt s = eps;
+    UpdateOptions polish(SnapBackPolicy::Report, tangent);
+    const UpdateResult r = updateTwoBands(trial[0], trial[1], s, Voigt::Zero(), polish);
+    if (r.converged()) {
+      res = r;
+      res.iterations += r.iterations;
+      res.released = true;
+      res.dissipation = first.volumeFraction * law_.dissipation(first.integrity, trial[0].integrity) +
+                        second.volumeFraction * law_.dissipation(second.integrity, trial[1].integrity);
+      first = trial[0];
+      second = trial[1];
+      strain = eps;
+      return res;
+    }
+    hi = lo;
+  }
+  return res;
+}
+
+UpdateResult EnrichedBand::updateCracked(BandState& first, BandState* second, Voigt& strain, const Voigt& increment,
+                                         const EffectiveSize& size, std::optional<BandState>& secondOnset,
+                                         UpdateOptions options) const {
+  if (second) return updateTwoBands(first, *second, strain, increment, options);
+  if (!opensSecondBand()) return updateCracked(first, strain, increment, options);
+  const BandState startBand = first;
+  const Voigt startStrain = strain;
+  UpdateResult r = updateCracked(first, strain, increment, options);
+  if (!r.converged() || !(tangentialStress(first, r.stress) >= secondOnsetStress_)) return r;
+
+  // The trigger is met inside the increment: find its exact onset alpha, sigma_tt(alpha) = the
+  // onset stress, along the one-band response from the increment's start (Illinois regula falsi).
+  struct At {
+    BandState band;
+    Voigt strain;
+    UpdateResult r;
+    double g;
+  };
+  const auto at = [&](double alpha) {
+    At s{startBand, startStrain, {}, 0.0};
+    s.r = updateCracked(s.band, s.strain, alpha * increment, options);
+    s.g = s.r.converged() ? tangentialStress(s.band, s.r.stress) - secondOnsetStress_ : std::numeric_limits<double>::quiet_NaN();
+    return s;
+  };
+  At hi{first, strain, r, tangentialStress(first, r.stress) - secondOnsetStress_};
+  double alpha = 1.0;
+  At lo = at(0.0);
+  if (!(lo.g < 0.0)) {
+    hi = lo, alpha = 0.0;  // open at the start of the increment
+  } else {
+    double a = 0.0, b = 1.0, ga = lo.g, gb = hi.g;
+    int side = 0;
+    for (int it = 0; it < 100 && b - a > 1e-15; ++it) {
+      const double c = (a * gb - b * ga) / (gb - ga);
+      At mid = at(c);
+      if (!(mid.g == mid.g)) break;  // a failed one-band update: keep the bracket's end
+      if (mid.g >= 0.0) {
+        hi = mid, b = c, gb = mid.g;
+        if (side == +1) ga *= 0.5;
+        side = +1;
+        if (mid.g <= 1e-12 * secondOnsetStress_) break;
+      } else {
+        a = c, ga = mid.g;
+        if (side == -1) gb *= 0.5;
+        side = -1;
+      }
+    }
+    alpha = b;
+  }
+  BandState opened = openSecondBand(hi.band, hi.strain, size);
+  BandState band = hi.band;
+  Voigt s = hi.strain;
+  UpdateResult rest = updateTwoBands(band, opened, s, (1.0 - alpha) * increment, options);
+  if (!rest.converged()) {
+    first = startBand;
+    strain = startStrain;
+    return rest;
+  }
+  first = band;
+  strain = s;
+  secondOnset = opened;
+  rest.dissipation += hi.r.dissipation;
+  rest.iterations += hi.r.iterations;
+  rest.released = rest.released || hi.r.released;
+  return rest;
+}
+
+UpdateResult EnrichedBand::updateIntact(Voigt& strain, const Voigt& increment, const EffectiveSize& size,
+                                        std::optional<BandState>& onset, std::optional<BandState>& secondOnset,
+                                        UpdateOptions options) const {
+  const Voigt end = strain + increment;
+  const Voigt s = stiffness() * end;
+  if (surelyIntact(s)) {
+    strain = end;
+    return {s, stiffness()};
+  }
+  return updateIntactSlow(strain, increment, size, onset, options, opensSecondBand() ? &secondOnset : nullptr);
+}
+
+}  // namespace ecm
