@@ -46,8 +46,9 @@ using PointUpdate = std::function<UpdateResult(MaterialPoint& point, const Voigt
 StepOutcome mixedControlStep(const PointUpdate& update, const Tangent& elastic, MaterialPoint& point,
                              const Voigt& currentStress, const MixedTarget& target, const MixedControlSettings& s);
 inline StepOutcome mixedControlStep(const Material& material, MaterialPoint& point, const Voigt& currentStress,
-                                    const MixedTarget& target, const EffectiveSize& size, const MixedControlSettings& s) {
-  UpdateOptions options;
+                                    const MixedTarget& target, const EffectiveSize& size, const MixedControlSettings& s,
+                                    SnapBackPolicy policy = SnapBackPolicy::Report) {
+  UpdateOptions options(policy);
   for (int i = 0; i < 3; ++i)
     if (target.control[i] == Control::Stress) options.stressControlled |= 1u << i;
   return mixedControlStep([&](MaterialPoint& p, const Voigt& d) { return material.update(p, d, size, options); },

@@ -190,6 +190,7 @@ class Runner {
       run_.failure = "snap-back reported by a model without a band to trace it";
       return false;
     }
+    if (point_.secondBand) return releaseRest(k, t);
     OpeningTarget o;
     o.control = t.control;
     o.direction = t.strainIncrement;
@@ -216,6 +217,14 @@ class Runner {
         dJump *= 0.5;
         if (dJump < 1e-14 * h) return fail(out.step, k, -1);
         continue;
+      }
+      if (model->opensSecondBand() &&
+          model->tangentialStress(*trial.band, out.step.result.stress) >= model->secondBandOnsetStress()) {
+        // The traced branch reaches the second band's trigger: the one-band trace ends here.
+        MixedTarget rest = t;
+        for (int c = 0; c < 3; ++c)
+          rest.strainIncrement[c] = t.control[c] == Control::Strain ? (1.0 - lambda) * o.direction[c] : 0.0;
+        return releaseRest(k, rest);
       }
       if (!turned) {
         // The limit point lies in this step if the path to the trial state stops being stable
@@ -298,6 +307,39 @@ class Runner {
     }
     run_.failure = "snap-back: the stable branch was not reached";
     return false;
+  }
+
+  // A snap-back of a point with two bands (or whose one-band trace meets the second band's
+  // trigger) is not traced: the rest of the increment is taken with the release of the explicit
+  // MPM, which lands on a stable state at the increment's strain (docs/model.md, "A second band").
+  bool releaseRest(int k, const MixedTarget& t) {
+    SnapBackReport& r = run_.snapBack;
+    const double before = principalStresses(stress_).first;
+    if (!r.detected) {
+      r.detected = true;
+      r.increment = increment_ + 1;
+      r.strain = point_.strain;
+      r.stressBefore = before;
+    }
+    if (scene_.onSnapBack == OnSnapBack::Stop) {
+      if (!run_.history.empty()) run_.history.back().event |= kLastStableRow;
+      std::ostringstream msg;
+      msg << "snap-back at increment " << increment_ + 1 << " of a point with two bands (first principal stress "
+          << before << " MPa at the last converged state): no stable branch continues under strain control";
+      run_.failure = msg.str();
+      return false;
+    }
+    MaterialPoint p = point_;
+    const StepOutcome out = mixedControlStep(material_, p, stress_, t, size_, settings_, SnapBackPolicy::Release);
+    if (!out.converged()) return fail(out, k, -1);
+    point_ = p;
+    if (!run_.history.empty()) run_.history.back().event |= kLastStableRow;
+    record(k, ++increment_, out, false, true);
+    if (r.increment == increment_) {
+      r.stressAfter = principalStresses(stress_).first;
+      r.jumped = true;
+    }
+    return true;
   }
 
   // Step from the current state to the limit point at normal jump `limit` and give it a row
@@ -464,6 +506,14 @@ class Runner {
       r.volumeFraction = b.volumeFraction;
       const Voigt bandStrain = b.onsetStrain + jumpToStrain(b.crackNormal) * b.jump / material_.enriched()->bandWidth();
       r.opening = material_.enriched()->bandWidth() * normalComponent(bandStrain - c * stress_, b.crackNormal);
+      if (point_.secondBand) {
+        const BandState& s = *point_.secondBand;
+        r.secondBand = true;
+        r.secondNormal = s.crackNormal;
+        r.secondDamage = s.damage();
+        r.secondNormalJump = s.normalJump();
+        r.secondSlidingJump = s.slidingDirection().dot(s.jump);
+      }
     } else if (material_.smeared() && point_.integrity < 1.0) {
       const Vec2 n = principalStresses(stress_).firstDirection;
       r.crackNormal = n;

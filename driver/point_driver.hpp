@@ -45,6 +45,12 @@ struct HistoryRow {
   bool openingControl = false;
   bool snapBackJump = false;  // this row is the stable state reached after a snap-back
   unsigned event = 0;         // RowEvent bits: a state inside an increment with a row of its own
+  // The second band (second_band: orthogonal), once it has opened.
+  bool secondBand = false;
+  Vec2 secondNormal = Vec2::Zero();
+  double secondDamage = 0.0;
+  double secondNormalJump = 0.0;   // [u]_2 . n2 (mm)
+  double secondSlidingJump = 0.0;  // [u]_2 . t2 (mm)
 };
 
 // Rows of their own inside an increment (the `event` column of history.csv, bits).

@@ -1,5 +1,8 @@
 #include "driver/point_output.hpp"
 
+#include <string>
+#include <vector>
+
 #include "io/csv_writer.hpp"
 #include "io/gnuplot.hpp"
 #include "io/json_summary.hpp"
@@ -12,16 +15,25 @@ double normalTraction(const HistoryRow& r) {
   return n[0] * n[0] * r.stress[0] + n[1] * n[1] * r.stress[1] + 2.0 * n[0] * n[1] * r.stress[2];
 }
 
-void writeHistoryCsv(const PointRun& run, const std::filesystem::path& file) {
-  io::CsvWriter csv(file, {"increment", "segment", "eps_xx", "eps_yy", "gamma_xy", "sig_xx", "sig_yy", "sig_xy",
-                           "damage", "integrity", "jump_n", "jump_t", "opening", "traction_n", "normal_x", "normal_y",
-                           "volume_fraction", "work", "dissipation", "iterations", "substeps", "opening_control",
-                           "snapback_jump", "event"});
-  for (const HistoryRow& r : run.history)
-    csv.row({double(r.increment), double(r.segment), r.strain[0], r.strain[1], r.strain[2], r.stress[0], r.stress[1],
-             r.stress[2], r.damage, r.integrity, r.normalJump, r.slidingJump, r.opening, normalTraction(r),
-             r.crackNormal[0], r.crackNormal[1], r.volumeFraction, r.work, r.dissipation, double(r.iterations),
-             double(r.substeps), r.openingControl ? 1.0 : 0.0, r.snapBackJump ? 1.0 : 0.0, double(r.event)});
+void writeHistoryCsv(const PointRun& run, const std::filesystem::path& file, bool secondBandColumns) {
+  std::vector<std::string> columns{"increment", "segment", "eps_xx", "eps_yy", "gamma_xy", "sig_xx", "sig_yy", "sig_xy",
+                                   "damage", "integrity", "jump_n", "jump_t", "opening", "traction_n", "normal_x", "normal_y",
+                                   "volume_fraction", "work", "dissipation", "iterations", "substeps", "opening_control",
+                                   "snapback_jump", "event"};
+  // With second_band: orthogonal, the second band (zeros until it opens).
+  if (secondBandColumns)
+    for (const char* c : {"damage_2", "jump_n_2", "jump_t_2", "normal_x_2", "normal_y_2"}) columns.emplace_back(c);
+  io::CsvWriter csv(file, columns);
+  for (const HistoryRow& r : run.history) {
+    std::vector<double> row{double(r.increment), double(r.segment), r.strain[0], r.strain[1], r.strain[2], r.stress[0],
+                            r.stress[1], r.stress[2], r.damage, r.integrity, r.normalJump, r.slidingJump, r.opening,
+                            normalTraction(r), r.crackNormal[0], r.crackNormal[1], r.volumeFraction, r.work,
+                            r.dissipation, double(r.iterations), double(r.substeps), r.openingControl ? 1.0 : 0.0,
+                            r.snapBackJump ? 1.0 : 0.0, double(r.event)};
+    if (secondBandColumns)
+      row.insert(row.end(), {r.secondDamage, r.secondNormalJump, r.secondSlidingJump, r.secondNormal[0], r.secondNormal[1]});
+    csv.row(row);
+  }
   csv.close();
 }
 
@@ -60,6 +72,18 @@ nlohmann::json pointSummaryJson(const PointScene& scene, const PointRun& run) {
     const HistoryRow& last = run.history.back();
     j["final"] = {{"damage", last.damage}, {"integrity", last.integrity}, {"jump_n", last.normalJump},
                   {"opening", last.opening}, {"normal", {last.crackNormal[0], last.crackNormal[1]}}};
+    if (scene.material.secondBand != SecondBandOption::Off) {
+      j["second_band"] = toString(scene.material.secondBand);
+      j["two_bands"] = last.secondBand ? 1 : 0;  // points with two bands: this point's
+      if (last.secondBand) {
+        int opened = 0;
+        while (!run.history[static_cast<std::size_t>(opened)].secondBand) ++opened;
+        j["final"]["second_band"] = {{"damage", last.secondDamage},
+                                     {"jump_n", last.secondNormalJump},
+                                     {"normal", {last.secondNormal[0], last.secondNormal[1]}},
+                                     {"first_row", run.history[static_cast<std::size_t>(opened)].increment}};
+      }
+    }
   }
   return j;
 }
@@ -87,7 +111,7 @@ void writePointPlots(const PointScene& scene, const std::filesystem::path& dir) 
 }
 
 void writePointOutputs(const PointScene& scene, const PointRun& run, const std::filesystem::path& dir) {
-  writeHistoryCsv(run, dir / "history.csv");
+  writeHistoryCsv(run, dir / "history.csv", scene.material.secondBand != SecondBandOption::Off);
   io::writeJsonSummary(pointSummaryJson(scene, run), dir / "summary.json");
   writePointPlots(scene, dir);
 }

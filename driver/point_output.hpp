@@ -9,7 +9,7 @@
 
 namespace ecm {
 
-void writeHistoryCsv(const PointRun& run, const std::filesystem::path& file);
+void writeHistoryCsv(const PointRun& run, const std::filesystem::path& file, bool secondBandColumns = false);
 nlohmann::json pointSummaryJson(const PointScene& scene, const PointRun& run);
 void writePointPlots(const PointScene& scene, const std::filesystem::path& dir);
 // All of the above into `dir`.

@@ -75,7 +75,8 @@ PointScene readPointScene(const YamlMap& map) {
                                                                                        : Hypothesis::PlaneStrain;
   s.effectiveSize = map.get<double>("effective_size", Range::positive());
   if (s.material.model == ModelKind::Enriched)
-    if (const std::string problem = effectiveSizeProblem(s.effectiveSize, s.material.bandWidth); !problem.empty())
+    if (const std::string problem = effectiveSizeProblem(s.effectiveSize, s.material.bandWidth,
+                                                                s.material.secondBand == SecondBandOption::Off ? 1 : 2); !problem.empty())
       map.fail("effective_size", problem);
   s.onSnapBack = map.getEnumOr("on_snapback", {"jump", "stop"}, "jump") == "jump" ? OnSnapBack::Jump : OnSnapBack::Stop;
   s.relativeTolerance = map.getOr<double>("tolerance", 1e-8, Range{0.0, 1e-3, false, true});
@@ -86,6 +87,10 @@ PointScene readPointScene(const YamlMap& map) {
     if (seg.openingControl && s.material.model != ModelKind::Enriched)
       path.failHere(std::string("opening control needs a band (model: enriched); this material is ") +
                     toString(s.material.model));
+  for (const Segment& seg : s.path)
+    if (seg.openingControl && s.material.secondBand != SecondBandOption::Off)
+      path.failHere("opening control drives the opening of one band; with second_band: orthogonal a point may have two "
+                    "(docs/model.md)");
   map.finish();
   return s;
 }

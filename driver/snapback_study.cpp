@@ -88,7 +88,7 @@ SnapBackStudy loadSnapBackStudy(const std::filesystem::path& file) {
     map.fail("material", "the material needs fracture_energy (N/mm): the smeared crack is regularised to it");
   s.effectiveSizes = map.getVector("effective_sizes", 0, io::Range::positive());
   for (double size : s.effectiveSizes)
-    if (const std::string problem = effectiveSizeProblem(size, s.material.bandWidth); !problem.empty())
+    if (const std::string problem = effectiveSizeProblem(size, s.material.bandWidth, s.material.secondBand == SecondBandOption::Off ? 1 : 2); !problem.empty())
       map.fail("effective_sizes", problem);
   s.strainIncrements = map.getOr<int>("strain_increments", 600, io::Range{10.0, 1e7, true, true});
   s.opening = map.getOr<double>("opening", 0.5, io::Range::positive());

@@ -27,13 +27,16 @@ double smallestRealEigenvalue(const Mat2& k) {
 
 }  // namespace
 
-std::string effectiveSizeProblem(double effectiveSize, double bandWidth) {
-  if (effectiveSize >= minimumEffectiveSize(bandWidth)) return "";
+std::string effectiveSizeProblem(double effectiveSize, double bandWidth, int bands) {
+  if (effectiveSize >= minimumEffectiveSize(bandWidth, bands)) return "";
   std::ostringstream msg;
   msg.precision(10);
-  msg << "H = " << effectiveSize << " mm is below the smallest effective size h (1 + " << kMinimumSizeMargin
-      << ") = " << minimumEffectiveSize(bandWidth) << " mm for the band width h = " << bandWidth
-      << " mm: a bulk thinner than that (1 - f < 1e-6, Eq. (1)) leaves its stress to round-off (docs/model.md)";
+  msg << "H = " << effectiveSize << " mm is below the smallest effective size " << (bands > 1 ? "2 h" : "h") << " (1 + "
+      << kMinimumSizeMargin << ") = " << minimumEffectiveSize(bandWidth, bands) << " mm for the band width h = "
+      << bandWidth << " mm: a bulk thinner than that (1 - "
+      << (bands > 1 ? "f1 - f2" : "f") << " < 1e-6, Eq. (1)) leaves its stress to round-off";
+  if (bands > 1) msg << " (second_band: orthogonal needs room for two bands)";
+  msg << " (docs/model.md)";
   return msg.str();
 }
 

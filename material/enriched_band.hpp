@@ -15,9 +15,10 @@ namespace ecm {
 // Below it the bulk (volume fraction 1 - f ~ 1e-6) is so thin that the round-off of the macro
 // strain, amplified by 1 / (1 - f) in Eq. (4), exceeds the stress tolerances (docs/model.md).
 inline constexpr double kMinimumSizeMargin = 1e-6;
-inline double minimumEffectiveSize(double bandWidth) { return bandWidth * (1.0 + kMinimumSizeMargin); }
+// A point that may open a second band needs room for both: twice that (docs/model.md).
+inline double minimumEffectiveSize(double bandWidth, int bands = 1) { return bands * bandWidth * (1.0 + kMinimumSizeMargin); }
 // Why an effective size is refused ("" if it is accepted), for the scene readers' messages.
-std::string effectiveSizeProblem(double effectiveSize, double bandWidth);
+std::string effectiveSizeProblem(double effectiveSize, double bandWidth, int bands = 1);
 
 // Whether a cracked point may open a second band across its first band's tangent
 // (docs/model.md, "A second band"). Off is the paper's model, bit for bit.
@@ -249,6 +250,9 @@ class EnrichedBand {
                              const BandDamageLaw::LoadingSurface (&surfaces)[2], const Voigt& eps, Vec4 jumps,
                              double tol) const;
   double twoBandTolerance(const BandState& first, const BandState& second, const Voigt& eps) const;
+  // The smaller stability margin of a two-band state (> 0: stable under the caller's control).
+  double twoBandMargin(const BandState& first, const BandState& second, const Mat4& jacobian,
+                       unsigned stressControlled) const;
   // The cracked update proper: elastic predictor, then damage corrector on the envelope.
   UpdateResult predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent,
                               unsigned stressControlled = 0) const;

@@ -4,9 +4,11 @@
 // Eq. (6), holds on both bands. The one-band update (enriched_band.cpp) is untouched: a point
 // pays for this file only once it has two bands, or while the option looks for the trigger.
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <vector>
 
 #include "material/driving_force.hpp"
 #include "material/enriched_band.hpp"
@@ -35,7 +37,7 @@ double EnrichedBand::tangentialStress(const BandState& first, const Voigt& stres
 
 BandState EnrichedBand::openSecondBand(const BandState& first, const Voigt& strain, const EffectiveSize& size) const {
   BandState b;
-  b.crackNormal = canonicalNormal(first.slidingDirection());
+  b.crackNormal = canonicalNormal(first.slidingDirection() + Vec2::Zero());  // (+ 0: no -0 component)
   const double f1 = first.volumeFraction;
   const Voigt firstBandStrain = first.onsetStrain + jumpToStrain(first.crackNormal) * first.jump / bandWidth_;  // Eq. (3)
   b.onsetStrain = (strain - f1 * firstBandStrain) / (1.0 - f1);  // eps_L2 = eps_b of Eq. (2): sigma continuous
@@ -129,6 +131,23 @@ EnrichedBand::TwoBandSolve EnrichedBand::solveTwoBands(const BandState& first, c
   return s;
 }
 
+double EnrichedBand::twoBandMargin(const BandState& first, const BandState& second, const Mat4& jacobian,
+                                   unsigned stressControlled) const {
+  // K scaled by its intact secant value mu / ((1 - f1 - f2) h); under mixed control also the
+  // stress-controlled block of D (Eq. (10)), scaled by E: both > 0 where the state is stable.
+  const double bulk = 1.0 - first.volumeFraction - second.volumeFraction;
+  const double kMargin = smallestRealPart(jacobian) * bandWidth_ * bulk / shearModulus_;
+  if (stressControlled == 0 || !(kMargin > 0.0)) return kMargin;
+  const Tangent d = consistentTangent(first, second, jacobian);
+  int idx[3], m = 0;
+  for (int i = 0; i < 3; ++i)
+    if (stressControlled & (1u << i)) idx[m++] = i;
+  Eigen::MatrixXd block(m, m);
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) block(i, j) = d(idx[i], idx[j]);
+  return std::min(kMargin, block.eigenvalues().real().minCoeff() / law_.law().youngsModulus);
+}
+
 UpdateResult EnrichedBand::updateTwoBands(BandState& first, BandState& second, Voigt& strain, const Voigt& increment,
                                           UpdateOptions options) const {
   const Voigt eps = strain + increment;
@@ -178,22 +197,25 @@ UpdateResult EnrichedBand::updateTwoBands(BandState& first, BandState& second, V
   // under strain control: for one band that is the snap-back of enriched_band.cpp.
   if (!settled) return fail(UpdateStatus::SnapBack, sol.eq.residual.norm());
   if (loading[0] || loading[1]) {
-    // Stable under the caller's control: K of Eq. (9) extended, and under mixed control the
-    // stress-controlled block of D of Eq. (10) (docs/model.md).
-    const double scale = bandWidth_ / (shearModulus_ * (1.0 / (1.0 - first.volumeFraction - second.volumeFraction)));
-    bool stable = smallestRealPart(sol.eq.jacobian) * scale > -kMarginFloor;
-    if (stable && options.stressControlled != 0) {
-      const Tangent d = consistentTangent(first, second, sol.eq.jacobian);
-      Eigen::MatrixXd block(3, 3);
-      int m = 0, idx[3];
-      for (int i = 0; i < 3; ++i)
-        if (options.stressControlled & (1u << i)) idx[m++] = i;
-      block.resize(m, m);
-      for (int i = 0; i < m; ++i)
-        for (int j = 0; j < m; ++j) block(i, j) = d(idx[i], idx[j]);
-      stable = block.eigenvalues().real().minCoeff() / law_.law().youngsModulus > -kMarginFloor;
+    // Stable under the caller's control at the root, and along the path to it (docs/model.md,
+    // "Snap-back on the path": sampled every kJumpCheck h, 8 to 256 samples, and geometrically
+    // towards the start), each band on its loading surface of the increment's start.
+    if (!(twoBandMargin(first, second, sol.eq.jacobian, options.stressControlled) > -kMarginFloor))
+      return fail(UpdateStatus::SnapBack, sol.eq.residual.norm());
+    const Vec4 delta = sol.jumps - start;
+    if (delta.norm() > kJumpCheck * bandWidth_ && !(bandHasFailed(first) && bandHasFailed(second))) {
+      const Surface path[2] = {loading[0] ? surface[0] : frozen[0], loading[1] ? surface[1] : frozen[1]};
+      const int uniform = std::clamp(static_cast<int>(std::ceil(delta.norm() / (kJumpCheck * bandWidth_))), kJumpSamples,
+                                     kMaxPathSamples);
+      std::vector<double> ts;
+      for (int k = 1; k < uniform; ++k) ts.push_back(double(k) / uniform);
+      for (double t = kFirstGeometricSample; t < 1.0 / uniform; t *= kGeometricRatio) ts.push_back(t);
+      for (const double t : ts) {
+        const TwoBandEquilibrium at = equilibrium(first, second, path, eps, start + t * delta, true);
+        if (!(twoBandMargin(first, second, at.jacobian, options.stressControlled) > -kMarginFloor))
+          return fail(UpdateStatus::SnapBack, sol.eq.residual.norm());
+      }
     }
-    if (!stable) return fail(UpdateStatus::SnapBack, sol.eq.residual.norm());
   }
 
   // 3. Commit: f_i int Y_i dD_i on each loading band (on the branch F(x_new) = Y).

@@ -302,7 +302,7 @@ Scene readScene(const YamlMap& m) {
   for (const YamlMap& mm : materialMaps) {
     const MaterialParams& p = s.materials[index++];
     if (p.model != ModelKind::Enriched) continue;
-    if (const std::string problem = effectiveSizeProblem(cellSize.smallest(), p.bandWidth); !problem.empty())
+    if (const std::string problem = effectiveSizeProblem(cellSize.smallest(), p.bandWidth, p.secondBand == SecondBandOption::Off ? 1 : 2); !problem.empty())
       mm.failHere("material '" + p.name + "' on this grid: the cells' " + problem);
   }
   s.endTime = m.get<double>("end_time", Range::positive());

@@ -1,6 +1,9 @@
 // ecm-point's driver: elastic closed forms, mixed control, the enriched point against its
 // closed form, the energy identity, snap-back detection and tracing, cyclic secant unloading.
 #include "driver/point_driver.hpp"
+#include "driver/point_output.hpp"
+#include "io/csv_reader.hpp"
+#include "io/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -169,6 +172,75 @@ TEST(PointDriver, CyclicUnloadingIsSecantToTheOrigin) {
     // back at zero strain, zero stress
     EXPECT_NEAR(run.history.back().stress[0], 0.0, 1e-8 * test::kFt);
   }
+}
+
+// The locking path with the second band (docs/model.md, "A second band"): uniaxial stress along
+// x past the first band's failure, then eps_yy with eps_xx and gamma_xy held.
+PointScene lockingPath(double bigH, double exx, double eyy, int increments) {
+  PointScene s;
+  s.material = concrete(ModelKind::Enriched);
+  s.material.secondBand = SecondBandOption::Orthogonal;
+  s.effectiveSize = bigH;
+  s.path = {Segment{{Control::Strain, Control::Stress, Control::Stress}, Voigt(exx, 0.0, 0.0), increments},
+            Segment{{Control::Strain, Control::Strain, Control::Strain}, Voigt(exx, eyy, 0.0), increments}};
+  return s;
+}
+
+TEST(PointDriver, TheSecondBandSoftensTheLockedStressAndDissipatesAnotherGF) {
+  // Both bands to failure: H x dissipation = 2 h int_0^1 F dD (docs/model.md, identities).
+  const PointScene s = lockingPath(2.5, 0.5, 0.9, 2000);
+  const PointRun run = runPoint(s);
+  ASSERT_TRUE(run.completed) << run.failure;
+  const HistoryRow& last = run.history.back();
+  ASSERT_TRUE(last.secondBand);
+  EXPECT_NEAR(last.secondNormal[1], 1.0, 1e-12);
+  EXPECT_GT(last.secondDamage, 1.0 - 1e-9);
+  EXPECT_LT(std::abs(last.stress[1]), 1e-6 * test::kFt) << "no locked stress left";
+  const double gf = test::kH * dissipationToFailure(kLaw);
+  EXPECT_NEAR(summarise(s, run).energyPerArea, 2.0 * gf, 1e-3 * gf);
+  EXPECT_FALSE(run.snapBack.detected);
+}
+
+TEST(PointDriver, ASnapBackWithTwoBandsIsReleasedAtTheIncrementsStrain) {
+  // H = 500 mm: each band snaps back (docs/model.md, identities: beyond h (E + E_p) / E_p). The
+  // first is traced under opening control; the second, opening inside an increment, is
+  // released: the row before it is marked as the last stable one, the landed row as a jump.
+  const PointScene s = lockingPath(500.0, 0.01, 0.02, 2000);
+  const PointRun run = runPoint(s);
+  ASSERT_TRUE(run.completed) << run.failure;
+  ASSERT_TRUE(run.snapBack.detected);
+  int released = 0;
+  for (std::size_t i = 1; i < run.history.size(); ++i) {
+    const HistoryRow& r = run.history[i];
+    if (r.segment != 2 || !r.snapBackJump) continue;
+    ++released;
+    EXPECT_TRUE(run.history[i - 1].event & kLastStableRow);
+    EXPECT_LT(r.stress[1], run.history[i - 1].stress[1]) << "the release drops the stress";
+    EXPECT_TRUE(r.secondBand);
+  }
+  EXPECT_EQ(released, 1);
+  EXPECT_TRUE(run.history.back().secondBand);
+  const double gf = test::kH * dissipationToFailure(kLaw);
+  EXPECT_NEAR(summarise(s, run).energyPerArea, 2.0 * gf, 1e-3 * gf);
+}
+
+TEST(PointDriver, HistoryAndSummaryShowTheSecondBand) {
+  const PointScene s = lockingPath(2.5, 0.05, 0.1, 200);
+  const PointRun run = runPoint(s);
+  ASSERT_TRUE(run.completed) << run.failure;
+  test::TempDir tmp;
+  writeHistoryCsv(run, tmp.path() / "history.csv", true);
+  const io::CsvTable h = io::readCsv(tmp.path() / "history.csv");
+  ASSERT_EQ(h.header.size(), 29u);
+  EXPECT_EQ(h.header[24], "damage_2");
+  EXPECT_EQ(h.header[28], "normal_y_2");
+  EXPECT_EQ(h.rows.front()[24], 0.0);
+  EXPECT_GT(h.rows.back()[24], 0.9);
+  EXPECT_EQ(h.rows.back()[28], 1.0);
+  const nlohmann::json j = pointSummaryJson(s, run);
+  EXPECT_EQ(j["second_band"], "orthogonal");
+  EXPECT_EQ(j["two_bands"], 1);
+  EXPECT_EQ(j["final"]["second_band"]["normal"][1], 1.0);
 }
 
 }  // namespace

@@ -99,3 +99,65 @@ path: {preset: uniaxial_tension, strain: 1e-4, increments: 5, opening: 0.2}
 
 }  // namespace
 }  // namespace ecm
+
+namespace ecm {
+namespace {
+
+// The second-band option (docs/model.md, "A second band") in a point scene's material.
+void expectSecondBandRejected(const std::string& model, const std::string& value, const std::string& rest, int line,
+                              const std::string& reason) {
+  std::string material = kMaterial;
+  material.replace(material.find("model: enriched"), 15, "model: " + model);
+  if (model != "enriched") material.replace(material.find("  band_width: 0.05\n"), 18, "");
+  const std::string scene = material + "  second_band: " + value + "\n" + rest;
+  try {
+    readPointScene(io::parseYaml(scene, "scene.yaml"));
+    FAIL() << "accepted:\n" << scene;
+  } catch (const io::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("scene.yaml:" + std::to_string(line) + ":"), std::string::npos) << what;
+    EXPECT_NE(what.find(reason), std::string::npos) << what;
+  }
+}
+
+const std::string kPath = "path: {preset: uniaxial_tension, strain: 2.0e-4, increments: 50}\n";
+
+TEST(PointSceneYaml, ReadsTheSecondBandOption) {
+  const PointScene s =
+      readPointScene(io::parseYaml(kMaterial + "  second_band: orthogonal\neffective_size: 10\n" + kPath, "scene.yaml"));
+  EXPECT_EQ(s.material.secondBand, SecondBandOption::Orthogonal);
+  const PointScene off = readPointScene(io::parseYaml(kMaterial + "effective_size: 10\n" + kPath, "scene.yaml"));
+  EXPECT_EQ(off.material.secondBand, SecondBandOption::Off);
+}
+
+TEST(PointSceneYaml, RejectsTheSecondBandOnAModelWithoutABand) {
+  expectSecondBandRejected("smeared_crack", "orthogonal", "effective_size: 10\n" + kPath, 11, "enriched only");
+  const std::string elastic =
+      "material: {model: linear_elastic, hypothesis: plane_stress, youngs_modulus: 1, poisson_ratio: 0,\n"
+      "  second_band: orthogonal}\neffective_size: 10\n" + kPath;
+  try {
+    readPointScene(io::parseYaml(elastic, "scene.yaml"));
+    FAIL() << "accepted:\n" << elastic;
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("scene.yaml:2: key 'material.second_band': is used by model enriched only"),
+              std::string::npos) << e.what();
+  }
+}
+
+TEST(PointSceneYaml, RejectsAnUnknownSecondBandValue) {
+  expectSecondBandRejected("enriched", "diagonal", "effective_size: 10\n" + kPath, 11, "orthogonal");
+}
+
+TEST(PointSceneYaml, RejectsAnEffectiveSizeWithoutRoomForTwoBands) {
+  // 2 h (1 + 1e-6) = 0.1000001 mm for h = 0.05 mm.
+  expectSecondBandRejected("enriched", "orthogonal", "effective_size: 0.1\n" + kPath, 12, "room for two bands");
+}
+
+TEST(PointSceneYaml, RejectsOpeningControlWithTheSecondBand) {
+  expectSecondBandRejected("enriched", "orthogonal",
+                           "effective_size: 10\npath: {preset: uniaxial_tension, strain: 2.0e-4, increments: 50, opening: 0.3}\n",
+                           13, "opening control drives the opening of one band");
+}
+
+}  // namespace
+}  // namespace ecm

@@ -103,7 +103,9 @@ void checkModel(ModelKind kind, Hypothesis hyp, SecondBandOption option, std::ui
         for (const BandResponse& b : eq.band) ASSERT_LE(intactDrivingForce(b.stress, compliance), onsetY * (1.0 + 1e-9));
         ASSERT_LE((eq.stress - r.stress).norm(), 1e-9 * test::kFt);
         ASSERT_LE(point.secondBand->damage(), 1.0);
-        if (before.secondBand) ASSERT_GE(point.secondBand->damage(), before.secondBand->damage());
+        if (before.secondBand) {
+          ASSERT_GE(point.secondBand->damage(), before.secondBand->damage());
+        }
       } else if (point.band) {
         const BandEquilibrium eq = m.enriched()->equilibrium(*point.band, point.strain, point.band->jump, false);
         ASSERT_LE(eq.residual.norm(), 1e-9 * test::kFt + 1e-13 * (m.stiffness() * point.strain).norm());

@@ -123,7 +123,9 @@ TEST_P(SecondBandLockingPath, OpensAcrossALockedBandAndSoftensToFailureWithGFOve
   const double peakX = run.largestPrincipal;  // sigma_xx: f_t' at onset; with nu > 0 the band's frozen
                                               // lateral strain lifts it after onset (docs/model.md)
   EXPECT_NEAR((m.stiffness() * run.point.band->onsetStrain)[0], test::kFt, 1e-9 * test::kFt);
-  if (nu == 0.0) EXPECT_NEAR(peakX, test::kFt, 1e-12 * test::kFt);
+  if (nu == 0.0) {
+    EXPECT_NEAR(peakX, test::kFt, 1e-12 * test::kFt);
+  }
   EXPECT_FALSE(run.point.secondBand) << "uniaxial stress along x never loads the tangent";
 
   // The y phase: eps_yy grows, eps_xx and gamma_xy held.
