@@ -144,14 +144,20 @@ void writeCheckpoint(const std::filesystem::path& path, const Solver& solver, co
   e.array(p.band);
   e.count(p.integrity.size());
   e.array(p.integrity);
-  e.count(p.bands.size());
-  for (const BandState& b : p.bands) {
-    e.put(b.crackNormal);
-    e.put(b.jump);
-    e.put(b.onsetStrain);
-    e.put(b.integrity);
-    e.put(b.volumeFraction);
-  }
+  const auto putBands = [&](const std::vector<BandState>& bands) {
+    e.count(bands.size());
+    for (const BandState& b : bands) {
+      e.put(b.crackNormal);
+      e.put(b.jump);
+      e.put(b.onsetStrain);
+      e.put(b.integrity);
+      e.put(b.volumeFraction);
+    }
+  };
+  putBands(p.bands);
+  e.count(p.secondBand.size());
+  e.array(p.secondBand);
+  putBands(p.secondBands);
 
   e.put(run.nextOutput);
   e.put(run.peakLoad);
@@ -261,15 +267,24 @@ RunBookkeeping readCheckpoint(const std::filesystem::path& path, Solver& solver,
     refuse("it has " + std::to_string(integrity) + " integrity values, the scene needs " +
            std::to_string(p.integrity.size()));
   d.array(p.integrity, integrity);
-  const std::size_t bands = d.count(9 * sizeof(double));
-  p.bands.resize(bands);
-  for (BandState& b : p.bands) {
-    d.get(b.crackNormal);
-    d.get(b.jump);
-    d.get(b.onsetStrain);
-    d.get(b.integrity);
-    d.get(b.volumeFraction);
-  }
+  const auto getBands = [&](std::vector<BandState>& states) {
+    states.resize(d.count(9 * sizeof(double)));
+    for (BandState& b : states) {
+      d.get(b.crackNormal);
+      d.get(b.jump);
+      d.get(b.onsetStrain);
+      d.get(b.integrity);
+      d.get(b.volumeFraction);
+    }
+    return states.size();
+  };
+  const std::size_t bands = getBands(p.bands);
+  const std::size_t secondIndex = d.count(sizeof(std::int32_t));
+  if (secondIndex != p.secondBand.size())
+    refuse("it has " + std::to_string(secondIndex) + " second-band indices, the scene needs " +
+           std::to_string(p.secondBand.size()) + " (second_band differs)");
+  d.array(p.secondBand, secondIndex);
+  const std::size_t secondBands = getBands(p.secondBands);
   for (std::size_t i = 0; i < n; ++i) {
     if (p.material[i] >= solver.materials().size())
       refuse("particle " + std::to_string(i) + " has material " + std::to_string(p.material[i]) + " of " +
@@ -277,6 +292,10 @@ RunBookkeeping readCheckpoint(const std::filesystem::path& path, Solver& solver,
     if (p.band[i] < -1 || (p.band[i] >= 0 && static_cast<std::size_t>(p.band[i]) >= bands))
       refuse("particle " + std::to_string(i) + " refers to band " + std::to_string(p.band[i]) + " of " +
              std::to_string(bands));
+    if (!p.secondBand.empty() && (p.secondBand[i] < -1 || (p.secondBand[i] >= 0 && (p.band[i] < 0 ||
+                                  static_cast<std::size_t>(p.secondBand[i]) >= secondBands))))
+      refuse("particle " + std::to_string(i) + " refers to second band " + std::to_string(p.secondBand[i]) + " of " +
+             std::to_string(secondBands));
   }
 
   run.nextOutput = d.get<double>();

@@ -5,7 +5,7 @@
 // snapshot times, peak load). Written atomically and durably (checkpoint.bin.tmp, fsync, rename),
 // so a crash while writing leaves the previous checkpoint usable.
 //
-// Format (version 1; numbers in the machine's byte order, checked by a byte-order mark):
+// Format (version 4; numbers in the machine's byte order, checked by a byte-order mark):
 //   header, 32 bytes: "ECMMPMCK" | u32 version | u32 0x01020304 | u64 payload bytes |
 //                     u64 FNV-1a 64 of the payload
 //   payload: u64 scene file hash | i32 threads |
@@ -15,7 +15,8 @@
 //            particles: u64 n | f64 position 2n, displacement 2n, velocity 2n, mass n, volume n,
 //              strain 3n, stress 3n, strain increment 3n | u8 material n | i32 band n |
 //              u64 m (0 or n), f64 integrity m | u64 bands, each f64 crack normal 2, jump 2,
-//              onset strain 3, integrity, volume fraction
+//              onset strain 3, integrity, volume fraction | u64 k (0 or n), i32 second band k |
+//              u64 second bands, each as a band
 //            run: f64 next output time, peak load | u64 history.csv bytes, FNV-1a 64, rows |
 //              u64 snapshots, f64 their times
 // The per-step caches (grid fields, shape-function stencils) are not stored: every step
@@ -31,7 +32,8 @@
 
 namespace ecm::mpm {
 
-inline constexpr std::uint32_t kCheckpointVersion = 3;  // 2: the USL deferred list; 3: the stop_when peak
+// 2: the USL deferred list; 3: the stop_when peak; 4: the second bands
+inline constexpr std::uint32_t kCheckpointVersion = 4;
 
 // A checkpoint that cannot be used: missing, truncated, corrupted, foreign, of another format
 // version, or written for another scene. The message names the file and says why.

@@ -4,7 +4,7 @@
 
 namespace ecm::mpm {
 
-void Particles::resize(std::size_t n, bool withIntegrity) {
+void Particles::resize(std::size_t n, bool withIntegrity, bool withSecondBand) {
   position.resize(n, Vec2::Zero());
   origin.resize(n, Vec2::Zero());
   velocity.resize(n, Vec2::Zero());
@@ -16,6 +16,7 @@ void Particles::resize(std::size_t n, bool withIntegrity) {
   material.resize(n, 0);
   band.resize(n, -1);
   integrity.resize(withIntegrity ? n : 0, 1.0);
+  secondBand.resize(withSecondBand ? n : 0, -1);
   stencilAt.resize(n);
 }
 
@@ -23,12 +24,15 @@ std::size_t Particles::bytesPerParticle() const {
   std::size_t b = sizeof(Vec2) * 3 + sizeof(double) * 2 + sizeof(Voigt) * 3 + sizeof(std::uint8_t) +
                   sizeof(std::int32_t) + sizeof(StencilAt);
   if (!integrity.empty()) b += sizeof(double);
+  if (!secondBand.empty()) b += sizeof(std::int32_t);
   return b;
 }
 
-bool Particles::bandsInParticleOrder() const {
+namespace {
+
+bool inParticleOrder(const std::vector<std::int32_t>& index) {
   std::int32_t last = -1;
-  for (const std::int32_t b : band) {
+  for (const std::int32_t b : index) {
     if (b < 0) continue;
     if (b != last + 1) return false;
     last = b;
@@ -36,15 +40,24 @@ bool Particles::bandsInParticleOrder() const {
   return true;
 }
 
-void Particles::sortBandsByParticle() {
+void sortByParticle(std::vector<std::int32_t>& index, std::vector<BandState>& states) {
   std::vector<BandState> sorted;
-  sorted.reserve(bands.size());
-  for (std::int32_t& b : band) {
+  sorted.reserve(states.size());
+  for (std::int32_t& b : index) {
     if (b < 0) continue;
-    sorted.push_back(bands[static_cast<std::size_t>(b)]);
+    sorted.push_back(states[static_cast<std::size_t>(b)]);
     b = static_cast<std::int32_t>(sorted.size() - 1);
   }
-  bands = std::move(sorted);
+  states = std::move(sorted);
+}
+
+}  // namespace
+
+bool Particles::bandsInParticleOrder() const { return inParticleOrder(band) && inParticleOrder(secondBand); }
+
+void Particles::sortBandsByParticle() {
+  sortByParticle(band, bands);
+  sortByParticle(secondBand, secondBands);
 }
 
 }  // namespace ecm::mpm

@@ -30,10 +30,18 @@ struct Particles {
   std::vector<StencilAt> stencilAt;
 
   std::vector<BandState> bands;      // side array: one per cracked enriched point
+  // The second band (second_band: orthogonal, docs/model.md): an index per particle into
+  // `secondBands` (-1: none), allocated only when a material of the scene has the option.
+  std::vector<std::int32_t> secondBand;
+  std::vector<BandState> secondBands;
 
   std::size_t size() const { return position.size(); }
   Vec2 displacement(std::size_t i) const { return position[i] - origin[i]; }  // mm, since the start
-  void resize(std::size_t n, bool withIntegrity);
+  void resize(std::size_t n, bool withIntegrity, bool withSecondBand = false);
+  const BandState* secondBandOf(std::size_t i) const {
+    return !secondBand.empty() && secondBand[i] >= 0 ? &secondBands[static_cast<std::size_t>(secondBand[i])] : nullptr;
+  }
+  std::size_t twoBandPoints() const { return secondBands.size(); }
 
   // Bands are appended in the order points crack; the stress update reads them in particle
   // order. Stored in particle order, that read is sequential instead of scattered (the cracked

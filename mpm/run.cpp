@@ -90,14 +90,25 @@ void writeParticles(const Solver& s, const std::filesystem::path& path) {
   std::filesystem::path tmp = path;
   tmp += ".tmp";
   try {
-    io::CsvWriter csv(tmp, {"x_mm", "y_mm", "damage", "material", "opening_mm", "normal_x", "normal_y", "sig_xx_MPa",
-                            "sig_yy_MPa", "sig_xy_MPa"});
     const Particles& p = s.particles();
+    std::vector<std::string> columns{"x_mm", "y_mm", "damage", "material", "opening_mm", "normal_x", "normal_y",
+                                     "sig_xx_MPa", "sig_yy_MPa", "sig_xy_MPa"};
+    const bool twoBands = !p.secondBand.empty();  // second_band: orthogonal: the second band's columns
+    if (twoBands)
+      for (const char* c : {"damage_2", "opening_2_mm", "normal_x_2", "normal_y_2"}) columns.emplace_back(c);
+    io::CsvWriter csv(tmp, columns);
+    std::vector<double> row;
     for (std::size_t i = 0; i < p.size(); ++i) {
       const BandState* b = p.band[i] >= 0 ? &p.bands[static_cast<std::size_t>(p.band[i])] : nullptr;
       const Vec2 normal = b ? b->crackNormal : Vec2::Zero();
-      csv.row({p.position[i][0], p.position[i][1], s.damage(i), static_cast<double>(p.material[i]),
-               b ? b->normalJump() : 0.0, normal[0], normal[1], p.stress[i][0], p.stress[i][1], p.stress[i][2]});
+      row = {p.position[i][0], p.position[i][1], s.damage(i), static_cast<double>(p.material[i]),
+             b ? b->normalJump() : 0.0, normal[0], normal[1], p.stress[i][0], p.stress[i][1], p.stress[i][2]};
+      if (twoBands) {
+        const BandState* b2 = p.secondBandOf(i);
+        row.insert(row.end(), {b2 ? b2->damage() : 0.0, b2 ? b2->normalJump() : 0.0, b2 ? b2->crackNormal[0] : 0.0,
+                               b2 ? b2->crackNormal[1] : 0.0});
+      }
+      csv.row(row);
     }
     csv.close();
   } catch (const io::OutputError& e) {
@@ -365,6 +376,10 @@ RunResult runScene(const Scene& scene, const RunOptions& options) {
                             {"met", result.endedByStopWhen},
                             {"peak_of_rows_N", watch.peak}};
     if (result.endedByStopWhen) summary["stop_when"]["load_at_stop_N"] = result.stopLoad;
+  }
+  if (!p.secondBand.empty()) {  // second_band: orthogonal (docs/model.md)
+    summary["two_band_points"] = p.twoBandPoints();
+    summary["bytes_per_particle_two_bands"] = p.bytesPerParticle() + 2 * Particles::bytesPerBand();
   }
   if (!result.completed && !result.stopped) summary["error"] = result.error;
   if (result.restartedFrom >= 0) summary["restarted_from_step"] = result.restartedFrom;

@@ -41,8 +41,13 @@ Particles seedParticles(const Scene& scene) {
   for (const Seed& sd : seeds)
     smeared = smeared || scene.materials[static_cast<std::size_t>(scene.bodies[static_cast<std::size_t>(sd.body)].material)].model ==
                              ModelKind::SmearedCrack;
+  // Likewise the second band's index: only if a particle's material has the option.
+  bool twoBands = false;
+  for (const Seed& sd : seeds)
+    twoBands = twoBands || scene.materials[static_cast<std::size_t>(scene.bodies[static_cast<std::size_t>(sd.body)].material)]
+                                   .secondBand != SecondBandOption::Off;
   Particles p;
-  p.resize(seeds.size(), smeared);
+  p.resize(seeds.size(), smeared, twoBands);
   const Vec2 lo = g.origin + 1.5 * g.cellSize, hi = g.origin + g.extent() - 1.5 * g.cellSize;
   for (std::size_t n = 0; n < seeds.size(); ++n) {
     const Body& body = scene.bodies[static_cast<std::size_t>(seeds[n].body)];

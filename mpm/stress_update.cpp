@@ -16,9 +16,10 @@ namespace ecm::mpm {
 
 namespace {
 
+// Bands opened in this step, added to the side arrays after the parallel loop.
 struct Onset {
   std::size_t particle;
-  BandState band;
+  std::optional<BandState> first, second;
 };
 
 struct Failure {
@@ -27,23 +28,37 @@ struct Failure {
   std::string what;  // an exception from the material (e.g. H <= h at onset)
 };
 
+// One update of an enriched point from its bands (nullptr: not opened yet); new bands go to
+// `onset` / `secondOnset`. Without the second-band option the point has at most one band.
+UpdateResult updateOnce(const EnrichedBand& m, Voigt& strain, BandState* band, BandState* second, const Voigt& d,
+                        const EffectiveSize& size, std::optional<BandState>& onset, std::optional<BandState>& secondOnset,
+                        UpdateOptions options) {
+  if (!m.opensSecondBand())
+    return band ? m.updateCracked(*band, strain, d, options) : m.updateIntact(strain, d, size, onset, options);
+  return band ? m.updateCracked(*band, second, strain, d, size, secondOnset, options)
+              : m.updateIntact(strain, d, size, onset, secondOnset, options);
+}
+
 // One enriched point: the increment in one go, else in 2^level equal sub-steps.
-UpdateResult updateEnriched(const EnrichedBand& m, Voigt& strain, BandState* band, const Voigt& d,
-                            const EffectiveSize& size, std::optional<BandState>& onset, int levels, UpdateOptions options,
-                            long& retries) {
-  UpdateResult r = band ? m.updateCracked(*band, strain, d, options) : m.updateIntact(strain, d, size, onset, options);
+UpdateResult updateEnriched(const EnrichedBand& m, Voigt& strain, BandState* band, BandState* second, const Voigt& d,
+                            const EffectiveSize& size, Onset& opened, int levels, UpdateOptions options, long& retries) {
+  UpdateResult r = updateOnce(m, strain, band, second, d, size, opened.first, opened.second, options);
   if (r.converged()) return r;
   ++retries;
   for (int level = 1; level <= levels; ++level) {
     const int n = 1 << level;
     const Voigt sub = d / n;
     Voigt s = strain;
-    std::optional<BandState> b;
+    std::optional<BandState> b, b2;
     if (band) b = *band;
+    if (second) b2 = *second;
     double dissipation = 0.0;
     bool ok = true, released = false;
     for (int i = 0; i < n && ok; ++i) {
-      r = b ? m.updateCracked(*b, s, sub, options) : m.updateIntact(s, sub, size, b, options);
+      std::optional<BandState> newFirst, newSecond;
+      r = updateOnce(m, s, b ? &*b : nullptr, b2 ? &*b2 : nullptr, sub, size, newFirst, newSecond, options);
+      if (newFirst) b = newFirst;
+      if (newSecond) b2 = newSecond;
       ok = r.converged();
       dissipation += r.dissipation;
       released = released || r.released;
@@ -53,7 +68,11 @@ UpdateResult updateEnriched(const EnrichedBand& m, Voigt& strain, BandState* ban
     if (band)
       *band = *b;
     else
-      onset = b;
+      opened.first = b;
+    if (second)
+      *second = *b2;
+    else
+      opened.second = b2;
     r.dissipation = dissipation;
     r.released = released;
     return r;
@@ -114,10 +133,12 @@ void Solver::updateStresses(bool deferredOnly) {
           }
           case ModelKind::Enriched: {
             const std::int32_t bi = p.band[i];
-            std::optional<BandState> onset;
+            const std::int32_t b2 = p.secondBand.empty() ? -1 : p.secondBand[i];
+            Onset onset{i, std::nullopt, std::nullopt};
             try {
               r = updateEnriched(*k.enriched, p.strain[i], bi >= 0 ? &p.bands[static_cast<std::size_t>(bi)] : nullptr,
-                                 d, size_, onset, levels, options, retries);
+                                 b2 >= 0 ? &p.secondBands[static_cast<std::size_t>(b2)] : nullptr, d, size_, onset,
+                                 levels, options, retries);
             } catch (const std::exception& ex) {
               r.status = UpdateStatus::NotConverged;
               what = ex.what();
@@ -126,7 +147,7 @@ void Solver::updateStresses(bool deferredOnly) {
               p.stress[i] = r.stress;
               if (r.dissipation != 0.0) chunkSum += r.dissipation * p.volume[i];
               released += r.released ? 1 : 0;
-              if (onset) mine.push_back({i, *onset});
+              if (onset.first || onset.second) mine.push_back(onset);
             }
             break;
           }
@@ -148,8 +169,14 @@ void Solver::updateStresses(bool deferredOnly) {
   for (auto& o : onsets) all.insert(all.end(), o.begin(), o.end());
   std::sort(all.begin(), all.end(), [](const Onset& a, const Onset& b) { return a.particle < b.particle; });
   for (const Onset& o : all) {
-    p.band[o.particle] = static_cast<std::int32_t>(p.bands.size());
-    p.bands.push_back(o.band);
+    if (o.first) {
+      p.band[o.particle] = static_cast<std::int32_t>(p.bands.size());
+      p.bands.push_back(*o.first);
+    }
+    if (o.second) {
+      p.secondBand[o.particle] = static_cast<std::int32_t>(p.secondBands.size());
+      p.secondBands.push_back(*o.second);
+    }
   }
   // Every 64 steps the bands go back into particle order (decided from the state and the step
   // alone, so a restarted run stores them exactly as an uninterrupted one).
@@ -187,6 +214,9 @@ void Solver::updateStresses(bool deferredOnly) {
         msg << ", band {normal " << v(b.crackNormal) << ", jump " << v(b.jump) << ", onset_strain " << v(b.onsetStrain)
             << ", integrity " << b.integrity << ", f " << b.volumeFraction << "}";
       }
+      if (const BandState* b = p.secondBandOf(i))
+        msg << ", second band {normal " << v(b->crackNormal) << ", jump " << v(b->jump) << ", onset_strain "
+            << v(b->onsetStrain) << ", integrity " << b->integrity << ", f " << b->volumeFraction << "}";
     }
     throw SimulationError(kind, step_ + 1, i, p.position[i], msg.str(), failure.result.status, failure.result.residual);
   }

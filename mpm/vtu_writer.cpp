@@ -101,6 +101,20 @@ void writeVtu(const Solver& solver, const std::filesystem::path& path, std::stri
     const BandState* b = band(i);
     return b ? b->normalJump() : 0.0;
   });
+  if (!p.secondBand.empty()) {  // second_band: orthogonal (docs/model.md)
+    a.add<float>(out, "damage_2", 1, n, [&](std::size_t i, int) {
+      const BandState* b = p.secondBandOf(i);
+      return b ? b->damage() : 0.0;
+    });
+    a.add<float>(out, "crack_normal_2", 3, n, [&](std::size_t i, int c) {
+      const BandState* b = p.secondBandOf(i);
+      return b && c < 2 ? b->crackNormal[c] : 0.0;
+    });
+    a.add<float>(out, "opening_2", 1, n, [&](std::size_t i, int) {
+      const BandState* b = p.secondBandOf(i);
+      return b ? b->normalJump() : 0.0;
+    });
+  }
   a.add<std::uint8_t>(out, "material", 1, n, [&](std::size_t i, int) { return p.material[i]; });
   a.add<std::uint8_t>(out, "cracked", 1, n, [&](std::size_t i, int) { return p.band[i] >= 0 ? 1 : 0; });
   out += "      </PointData>\n      <Points>\n";

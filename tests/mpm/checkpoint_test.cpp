@@ -89,12 +89,15 @@ void expectSameState(const Solver& a, const Solver& b) {
   EXPECT_TRUE(sameBits(p.material, q.material));
   EXPECT_TRUE(sameBits(p.band, q.band));
   EXPECT_TRUE(sameBits(p.integrity, q.integrity));
-  ASSERT_EQ(p.bands.size(), q.bands.size());
-  for (std::size_t i = 0; i < p.bands.size(); ++i) {
-    const BandState &x = p.bands[i], &y = q.bands[i];
-    EXPECT_TRUE(x.crackNormal == y.crackNormal && x.jump == y.jump && x.onsetStrain == y.onsetStrain &&
-                x.integrity == y.integrity && x.volumeFraction == y.volumeFraction)
-        << "band " << i;
+  EXPECT_TRUE(sameBits(p.secondBand, q.secondBand));
+  for (const auto& [x, y] : {std::pair{&p.bands, &q.bands}, std::pair{&p.secondBands, &q.secondBands}}) {
+    ASSERT_EQ(x->size(), y->size());
+    for (std::size_t i = 0; i < x->size(); ++i) {
+      const BandState &u = (*x)[i], &v = (*y)[i];
+      EXPECT_TRUE(u.crackNormal == v.crackNormal && u.jump == v.jump && u.onsetStrain == v.onsetStrain &&
+                  u.integrity == v.integrity && u.volumeFraction == v.volumeFraction)
+          << "band " << i;
+    }
   }
   const Solver::StepState s = a.stepState(), t = b.stepState();
   EXPECT_EQ(s.time, t.time);
@@ -142,6 +145,35 @@ TEST(Checkpoint, RestoresEveryArrayAndTheStepStateBitwise) {
     b.advance();
   }
   expectSameState(a, b);
+}
+
+// The same with the second-band option: the second bands' index and states are restored too.
+TEST(Checkpoint, RestoresTheSecondBandsBitwise) {
+  TempDir tmp;
+  const Scene scene = twoBandBlock();
+  Solver a(scene, 1);
+  while (a.particles().secondBands.empty() && a.time() < scene.endTime) a.advance();
+  ASSERT_FALSE(a.particles().secondBands.empty()) << "second bands should open";
+  const fs::path file = tmp.path() / "checkpoint.bin";
+  writeCheckpoint(file, a, RunBookkeeping{}, 42);
+  Solver b(scene, 1);
+  readCheckpoint(file, b, 42);
+  expectSameState(a, b);
+  for (int n = 0; n < 40; ++n) {
+    a.advance();
+    b.advance();
+  }
+  expectSameState(a, b);
+  // The scene without the option has no second-band index: the checkpoint does not fit.
+  Scene off = scene;
+  off.materials[0].secondBand = SecondBandOption::Off;
+  Solver c(off, 1);
+  try {
+    readCheckpoint(file, c, 42);
+    FAIL() << "a checkpoint with second bands was read into a scene without them";
+  } catch (const CheckpointError& e) {
+    expectContains(e.what(), "second_band differs");
+  }
 }
 
 // The test the whole feature is for: stopped after K steps and resumed, the outputs are the

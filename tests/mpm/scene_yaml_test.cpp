@@ -24,6 +24,20 @@ conditions:
   - {name: base, box: {min: [0, 0], max: [100, 0]}, fixed: [x, y]}
 )";
 
+TEST(SceneYaml, ShippedSecondBandScenesDifferOnlyInTheMaterialOption) {
+  for (const char* mesh : {"coarse", "medium", "fine"}) {
+    const auto dir = std::filesystem::path(ECM_SOURCE_DIR) / "data" / "den";
+    const Scene off = loadSceneFile(dir / (std::string("den-4b-") + mesh + ".yaml"));
+    const Scene on = loadSceneFile(dir / (std::string("den-4b-") + mesh + "-second-band.yaml"));
+    ASSERT_EQ(on.materials.size(), 1u);
+    EXPECT_EQ(on.materials[0].secondBand, SecondBandOption::Orthogonal) << mesh;
+    EXPECT_EQ(off.materials[0].secondBand, SecondBandOption::Off) << mesh;
+    EXPECT_EQ(on.grid.cellSize, off.grid.cellSize);
+    EXPECT_EQ(on.endTime, off.endTime);
+    EXPECT_EQ(on.conditions.size(), off.conditions.size());
+  }
+}
+
 TEST(SceneYaml, ShippedScenesLoad) {
   for (const char* name : {"elastic-bar.yaml", "tension-block.yaml"}) {
     const Scene s = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data" / "mpm" / name);
@@ -69,6 +83,20 @@ TEST(SceneYaml, ErrorsNameFileAndLine) {
     const auto e = err(t);
     EXPECT_EQ(e.line, 4);
     expectContains(e.what(), "0.05000005 mm");
+  }
+  {
+    // second_band: orthogonal needs H >= 2 h (1 + 1e-6) = 0.1000001 mm: cells of 0.1 mm are refused.
+    std::string t = kScene;
+    t.replace(t.find("cell_size: [10, 10]"), 19, "cell_size: [0.1, 0.1]");
+    t.replace(t.find("max: [100, 100]"), 15, "max: [1, 1]");
+    t.replace(t.find("max: [100, 0]"), 13, "max: [1, 0]");
+    t.replace(t.find("model: linear_elastic,"), 22,
+              "model: enriched, tensile_strength: 3, softening_modulus: 8, softening_exponent: 0.1, band_width: 0.05, "
+              "second_band: orthogonal,");
+    const auto e = err(t);
+    EXPECT_EQ(e.line, 4);
+    expectContains(e.what(), "0.1000001 mm");
+    expectContains(e.what(), "room for two bands");
   }
   {
     const auto e = err(kScene + "bogus: 1\n");

@@ -109,4 +109,21 @@ inline Scene notchedCrackingBlock() {
   return s;
 }
 
+// The notched cracking block with the second-band option, also pulled sideways at its right
+// edge: the bulk along the notch's horizontal crack goes into tension and second bands open
+// (docs/model.md, "A second band"). 1560 particles; the first second bands open by ~1.3e-4 s.
+inline Scene twoBandBlock() {
+  Scene s = notchedCrackingBlock();
+  s.name = "two-band-block";
+  s.materials[0].secondBand = SecondBandOption::Orthogonal;
+  NodeCondition right;
+  right.name = "right";
+  right.box = {Vec2(100.0, 5.0), Vec2(100.0, 95.0)};
+  right.component[0] = {Prescribed::Velocity, History::smoothRamp(150.0, 2e-5)};
+  s.conditions.push_back(right);
+  s.endTime = 2.4e-4;
+  s.outputInterval = 2e-5;
+  return s;
+}
+
 }  // namespace ecm::mpm::test
