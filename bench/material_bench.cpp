@@ -2,6 +2,7 @@
 // cracked enriched in softening <= 1 microsecond.
 #include <benchmark/benchmark.h>
 
+#include <optional>
 #include <vector>
 
 #include "material/material.hpp"
@@ -99,6 +100,60 @@ void BM_EnrichedCrackedUnloading(benchmark::State& st) {
   if (copy.band->integrity != s.band->integrity) st.SkipWithError("the band loaded");
 }
 BENCHMARK(BM_EnrichedCrackedUnloading)->Arg(1)->Arg(0)->ArgName("tangent");
+
+// The second-band option (docs/model.md, "A second band"). A one-band point with the option on
+// pays for the trigger check: the bulk stress along its band's tangent.
+void BM_EnrichedCrackedSofteningOptionOn(benchmark::State& st) {
+  EnrichedParams p = concrete();
+  p.secondBand = SecondBandOption::Orthogonal;
+  const EnrichedBand model(p);
+  const auto size = EffectiveSize::fixed(2.5);
+  const EnrichedState s = crackedPoint(model, size);
+  if (!s.band || s.secondBand) return st.SkipWithError("expected one band");
+  const UpdateOptions options{SnapBackPolicy::Report, st.range(0) != 0};
+  for (auto _ : st) {
+    BandState band = *s.band;
+    Voigt strain = s.strain;
+    std::optional<BandState> opened;
+    const UpdateResult r = model.updateCracked(band, nullptr, strain, kStep, size, opened, options);
+    benchmark::DoNotOptimize(r);
+  }
+}
+BENCHMARK(BM_EnrichedCrackedSofteningOptionOn)->Arg(1)->Arg(0)->ArgName("tangent");
+
+// A point with two softened bands: a nearly equibiaxial stretch (both damages above 0.3).
+EnrichedState twoBandPoint(const EnrichedBand& model, const EffectiveSize& size) {
+  EnrichedState s;
+  for (int i = 0; i < 400 && !(s.secondBand && s.secondBand->damage() > 0.3); ++i)
+    model.update(s, Voigt(2e-6, 2e-6, 1e-7), size);
+  return s;
+}
+
+// Times updateTwoBands from the same state each time, the increment along the bands' normals
+// (sign +1: both load, -1: both unload); range(0): tangent.
+void timeTwoBands(benchmark::State& st, double sign) {
+  EnrichedParams p = concrete();
+  p.secondBand = SecondBandOption::Orthogonal;
+  const EnrichedBand model(p);
+  const EnrichedState s = twoBandPoint(model, EffectiveSize::fixed(10.0));
+  if (!s.secondBand) return st.SkipWithError("no second band");
+  const auto dyad = [](const Vec2& n) { return Voigt(n[0] * n[0], n[1] * n[1], 2.0 * n[0] * n[1]); };
+  const Voigt increment = sign * 2e-7 * (dyad(s.band->crackNormal) + dyad(s.secondBand->crackNormal));
+  const UpdateOptions options{SnapBackPolicy::Report, st.range(0) != 0};
+  int iterations = 0;
+  for (auto _ : st) {
+    BandState first = *s.band, second = *s.secondBand;
+    Voigt strain = s.strain;
+    const UpdateResult r = model.updateTwoBands(first, second, strain, increment, options);
+    iterations = r.iterations;
+    benchmark::DoNotOptimize(r);
+  }
+  st.counters["newton_iterations"] = iterations;
+}
+void BM_EnrichedTwoBandsSoftening(benchmark::State& st) { timeTwoBands(st, 1.0); }
+void BM_EnrichedTwoBandsUnloading(benchmark::State& st) { timeTwoBands(st, -1.0); }
+BENCHMARK(BM_EnrichedTwoBandsSoftening)->Arg(1)->Arg(0)->ArgName("tangent");
+BENCHMARK(BM_EnrichedTwoBandsUnloading)->Arg(1)->Arg(0)->ArgName("tangent");
 
 void BM_SmearedSoftening(benchmark::State& st) {
   const SmearedCrack model({{32000.0, 0.2, Hypothesis::PlaneStress}, 3.0, 8.184, 0.128});

@@ -123,7 +123,9 @@ EnrichedBand::TwoBandSolve EnrichedBand::solveTwoBands(const BandState& first, c
     jumps += alpha * step;
     s.eq = trial;
     rn = s.eq.residual.norm();
-    if ((s.eq.band[0].loading || s.eq.band[1].loading) && !(smallestRealPart(s.eq.jacobian) > 0.0))
+    // det K <= 0: an odd number of eigenvalues on the unstable side (the full test, on the
+    // eigenvalues, is made at the root; this flag only names a failed Newton a snap-back).
+    if ((s.eq.band[0].loading || s.eq.band[1].loading) && !(s.eq.jacobian.determinant() > 0.0))
       s.sawUnstableBranch = true;
   }
   s.jumps = jumps;

@@ -16,6 +16,9 @@
 #         MESH-tail | tail                  the 4b scene of MESH pulled on to delta = 0.4 mm at the same
 #                                           22.2 mm/s, ended by stop_when once P < 10 % of its peak
 #                                           (the issue's end criterion; the fine one runs ~25 minutes)
+#         MESH-second | second               the 4b scene of MESH with the second-band option,
+#                                           data/den/den-4b-MESH-second-band.yaml (docs/model.md)
+#         MESH-second-tail | second-tail    the same pulled on as MESH-tail
 #         report                            no run: only the tables and plots of what is in OUT_DIR
 # Writes OUT_DIR/RUN/ (ecm-mpm's output folder per run, without VTU snapshots),
 # OUT_DIR/load_displacement.png (P against delta, enriched runs), OUT_DIR/contrast.png (all models),
@@ -31,7 +34,8 @@ shift || true
 [[ $# -gt 0 ]] || set -- coarse
 threads=${DEN_THREADS:-2}
 allRuns=(coarse medium fine coarse-halfrate coarse-quarterrate 4a-coarse coarse-smeared medium-smeared fine-smeared
-         coarse-crackband medium-crackband fine-crackband coarse-tail medium-tail fine-tail)
+         coarse-crackband medium-crackband fine-crackband coarse-tail medium-tail fine-tail
+         coarse-second medium-second fine-second coarse-second-tail medium-second-tail fine-second-tail)
 runs=()
 for w in "$@"; do
   case "$w" in
@@ -40,11 +44,13 @@ for w in "$@"; do
     quarterrate) runs+=(coarse-quarterrate) ;;
     contrast) runs+=(coarse-smeared medium-smeared fine-smeared coarse-crackband medium-crackband fine-crackband) ;;
     tail) runs+=(coarse-tail medium-tail fine-tail) ;;
+    second) runs+=(coarse-second medium-second fine-second) ;;
+    second-tail) runs+=(coarse-second-tail medium-second-tail fine-second-tail) ;;
     report) ;;
-    coarse | medium | fine | coarse-halfrate | coarse-quarterrate | 4a-coarse | *-smeared | *-crackband | *-tail)
+    coarse | medium | fine | coarse-halfrate | coarse-quarterrate | 4a-coarse | *-smeared | *-crackband | *-tail | *-second)
       [[ " ${allRuns[*]} " == *" $w "* ]] || { echo "error: unknown run '$w'" >&2; exit 2; }
       runs+=("$w") ;;
-    *) echo "usage: scripts/den.sh [OUT_DIR] [coarse|medium|fine|all|halfrate|quarterrate|4a-coarse|MESH-smeared|MESH-crackband|contrast|MESH-tail|tail|report]..." >&2; exit 2 ;;
+    *) echo "usage: scripts/den.sh [OUT_DIR] [coarse|medium|fine|all|halfrate|quarterrate|4a-coarse|MESH-smeared|MESH-crackband|contrast|MESH-tail|tail|MESH-second|second|MESH-second-tail|second-tail|report]..." >&2; exit 2 ;;
   esac
 done
 bin=${DEN_BIN:-./build/mpm/ecm-mpm}
@@ -59,14 +65,18 @@ sceneOf() {
     coarse | medium | fine) echo "data/den/den-4b-$run.yaml" ;;
     coarse-halfrate | coarse-quarterrate) echo "data/den/den-4b-$run.yaml" ;;
     4a-coarse) echo "data/den/den-4a-coarse.yaml" ;;
+    *-second) echo "data/den/den-4b-$mesh-second-band.yaml" ;;
     *-tail)
       # The time line's last segment (delta 0.032 mm at 3.44004e-3 s, 22.2 mm/s) extended to
       # 0.4 mm (2.000004e-2 s), the shear held to then, and the issue's end criterion as stop_when.
+      # (MESH-second-tail: the same from the second-band scene.)
+      local base=data/den/den-4b-$mesh.yaml
+      [[ $variant == second-tail ]] && base=data/den/den-4b-$mesh-second-band.yaml
       mkdir -p "$out/scenes"
       sed -e "/@material/ s|{file: ../materials/|{file: $(realpath data/materials)/|" \
           -e 's|^end_time: 0.00650004 |end_time: 0.02000004 |' \
           -e 's|\[0.00650004, 0.1\]\]|[0.02000004, 0.4]]|' -e 's|\[0.00650004, 1\]\]|[0.02000004, 1]]|' \
-          -e "s|^name: den-4b-$mesh|name: den-4b-$run|" "data/den/den-4b-$mesh.yaml" >"$out/scenes/den-4b-$run.yaml"
+          -e "s|^name: den-4b-$mesh.*|name: den-4b-$run|" "$base" >"$out/scenes/den-4b-$run.yaml"
       echo "stop_when: {condition: top, load_below: 0.1, after_time: 0.00344004}   # P < 10 % of its peak, after delta = 0.032 mm" \
         >>"$out/scenes/den-4b-$run.yaml"
       grep -q "0.02000004, 0.4" "$out/scenes/den-4b-$run.yaml" || { echo "error: den-4b-$mesh.yaml's time line is not the one den.sh extends" >&2; return 1; }
@@ -241,9 +251,11 @@ if printf '%s\n' "${rows[@]}" | grep -q -e '-tail '; then
       set -- $r
       [[ $1 == *-tail ]] || continue
       color=$(case $1 in coarse*) echo '#1b9e77' ;; medium*) echo '#d95f02' ;; fine*) echo '#7570b3' ;; esac)
+      lt=1  # the second-band model dash-dotted
+      [[ $1 == *-second-tail ]] && lt=4
       h=$out/$1/history.csv
-      printf "%s'%s/history.csv' every ::1 using %s:%s with lines lw 2 lc rgb '%s' title '%s (%s, end at %.3f mm)', \\\\\\n     %s with lines dt 2 lc rgb '%s' notitle" \
-        "$sep" "$1" "$(col "$h" top_uy_mm)" "$(col "$h" top_ry_N)" "$color" "$1" "$2" "${15}" "$(awk -v p="$3" 'BEGIN { print 0.1 * p }')" "$color"
+      printf "%s'%s/history.csv' every ::1 using %s:%s with lines lw 2 dt %s lc rgb '%s' title '%s (%s, end at %.3f mm)', \\\\\\n     %s with lines dt 2 lc rgb '%s' notitle" \
+        "$sep" "$1" "$(col "$h" top_uy_mm)" "$(col "$h" top_ry_N)" "$lt" "$color" "$1" "$2" "${15}" "$(awk -v p="$3" 'BEGIN { print 0.1 * p }')" "$color"
       sep=", \\"$'\n'"     "
     done
     echo

@@ -3,8 +3,10 @@
 # macro stress-strain curves overlaid, the damage D at the states A (pre-peak), B (peak) and
 # C (post-peak) and its increment since the previous state, per mesh, and a table.
 # Run after the build (cmake -S . -B build -G Ninja && ninja -C build).
-# Usage: scripts/rve.sh [OUT_DIR] [coarse|fine|xfine|all|report]...   (default: results/rve coarse)
-# (xfine: the 0.0625 mm convergence check, 640k particles, ~20 minutes; `all` is coarse and fine)
+# Usage: scripts/rve.sh [OUT_DIR] [coarse|fine|xfine|all|MESH-second|second|report]...   (default: results/rve coarse)
+# (xfine: the 0.0625 mm convergence check, 640k particles, ~20 minutes; `all` is coarse and fine;
+# MESH-second: the scene of MESH with the second-band option on all three phases, written to
+# OUT_DIR/scenes/ with its material files (docs/model.md, "A second band"); `second`: coarse and fine)
 # The states are the scene's particle_snapshots (times in s, picked on the coarse curve: A at
 # 84 % of the peak load before it, B at the peak, C at 58 % after it); ecm-mpm writes
 # particles_t<time>.csv at each. Writes OUT_DIR/MESH/ (ecm-mpm's folder), OUT_DIR/stress_strain.png,
@@ -21,29 +23,45 @@ bin=${RVE_BIN:-./build/mpm/ecm-mpm}
 runs=()
 for w in "$@"; do
   case "$w" in
-    coarse | fine | xfine) runs+=("$w") ;;
+    coarse | fine | xfine | coarse-second | fine-second | xfine-second) runs+=("$w") ;;
     all) runs+=(coarse fine) ;;
+    second) runs+=(coarse-second fine-second) ;;
     report) ;;
-    *) echo "usage: scripts/rve.sh [OUT_DIR] [coarse|fine|xfine|all|report]..." >&2; exit 2 ;;
+    *) echo "usage: scripts/rve.sh [OUT_DIR] [coarse|fine|xfine|all|MESH-second|second|report]..." >&2; exit 2 ;;
   esac
 done
 [[ -x $bin ]] || { echo "error: $bin not built (cmake -S . -B build -G Ninja && ninja -C build)" >&2; exit 2; }
 mkdir -p "$out"
 side=25 thick=10  # mm: the sample (data/rve/rve-*.yaml)
 
+# The scene of a run: data/rve/rve-MESH.yaml, or for MESH-second a copy next to copies of the
+# three phases' material files with `second_band: orthogonal` (found first, beside the scene).
+sceneOf() {
+  local mesh=${1%-second}
+  [[ $1 == *-second ]] || { echo "data/rve/rve-$1.yaml"; return; }
+  mkdir -p "$out/scenes"
+  for phase in matrix inclusion itz; do
+    { cat "data/materials/rve-$phase.yaml"; echo "second_band: orthogonal   # off | orthogonal (docs/model.md)"; } \
+      >"$out/scenes/rve-$phase.yaml"
+  done
+  sed -e "s|^name: rve-$mesh|name: rve-$1|" "data/rve/rve-$mesh.yaml" >"$out/scenes/rve-$1.yaml"
+  echo "$out/scenes/rve-$1.yaml"
+}
+
 for m in "${runs[@]}"; do
-  echo "== RVE $m: data/rve/rve-$m.yaml" >&2
+  scene=$(sceneOf "$m")
+  echo "== RVE $m: $scene" >&2
   rm -f "$out/$m"/{history.csv,summary.json,particles_*.csv}
-  $bin "data/rve/rve-$m.yaml" --out "$out/$m" --no-vtu --threads "$threads" -q
+  $bin "$scene" --out "$out/$m" --no-vtu --threads "$threads" -q
   rc=$?
-  [[ $rc -le 1 ]] || echo "error: ecm-mpm could not run data/rve/rve-$m.yaml (status $rc)" >&2
+  [[ $rc -le 1 ]] || echo "error: ecm-mpm could not run $scene (status $rc)" >&2
 done
 
 col() { head -1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }
 jnum() { grep -m1 "\"$2\"" "$1" | sed 's/.*: *//; s/[",]//g'; }
 
 rows=()
-for m in coarse fine xfine; do
+for m in coarse fine xfine coarse-second fine-second xfine-second; do
   dir=$out/$m
   [[ -f $dir/summary.json ]] || continue
   h=$dir/history.csv
@@ -55,7 +73,7 @@ for m in coarse fine xfine; do
   labels=(A B C D E F)
   states=""
   prev=""
-  ps=$(case $m in coarse) echo 0.22 ;; fine) echo 0.11 ;; xfine) echo 0.055 ;; esac)
+  ps=$(case $m in coarse*) echo 0.22 ;; fine*) echo 0.11 ;; xfine*) echo 0.055 ;; esac)
   for k in "${!snaps[@]}"; do
     t=${snaps[$k]} l=${labels[$k]}
     f=$m/particles_t$t.csv
@@ -147,11 +165,24 @@ done
 # each time) also the observed order of convergence p = log2(e1 / e2) and the extrapolated peak
 # P_fine + (P_fine - P_coarse) / (2^p - 1) (Richardson).
 for ((i = 1; i < ${#rows[@]}; ++i)); do
+  # (only meshes of the same model: with or without the second band; and each model against
+  # the other on the same mesh)
+  a=$(set -- ${rows[$((i - 1))]}; echo "$1") b=$(set -- ${rows[$i]}; echo "$1")
+  if [[ $a == *-second && $b != *-second ]] || [[ $a != *-second && $b == *-second ]]; then continue; fi
   awk -v na="$(set -- ${rows[$((i - 1))]}; echo "$1")" -v a="$(set -- ${rows[$((i - 1))]}; echo "$3")" \
       -v nb="$(set -- ${rows[$i]}; echo "$1")" -v b="$(set -- ${rows[$i]}; echo "$3")" \
       'BEGIN { printf "peak mean stress, %s against %s: %+.2f %%\n", nb, na, 100 * (b - a) / a }'
 done
-if [[ ${#rows[@]} -eq 3 ]]; then
+for r in "${rows[@]}"; do
+  set -- $r
+  [[ $1 == *-second ]] || continue
+  for q in "${rows[@]}"; do
+    [[ $(set -- $q; echo "$1") == "${1%-second}" ]] || continue
+    awk -v n="$1" -v a="$(set -- $q; echo "$3")" -v b="$3" \
+      'BEGIN { printf "peak mean stress, %s against the one-band model: %+.2f %%\n", n, 100 * (b - a) / a }'
+  done
+done
+if [[ ${#rows[@]} -eq 3 && " ${rows[*]} " != *-second* ]]; then
   awk -v a="$(set -- ${rows[0]}; echo "$3")" -v b="$(set -- ${rows[1]}; echo "$3")" -v c="$(set -- ${rows[2]}; echo "$3")" 'BEGIN {
     if ((a - b) * (b - c) > 0) { p = log((a - b) / (b - c)) / log(2); x = c + (c - b) / (2 ^ p - 1)
       printf "observed order of convergence %.2f, extrapolated peak %.4f MPa (finest mesh %+.2f %% from it)\n", p, x, 100 * (c - x) / x }

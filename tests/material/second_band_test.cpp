@@ -273,6 +273,56 @@ TEST(SecondBand, TangentMatchesFiniteDifferences) {
   }
 }
 
+TEST(SecondBand, ASnapBackOfTheSecondBandIsReportedOrReleasedOntoAStableState) {
+  // H = 500 mm, beyond the snap-back size h (E + E_p) / E_p = 195.55 mm (nu = 0, docs/model.md):
+  // each band snaps back at its onset. Report leaves the state unchanged; Release (the explicit
+  // MPM) lands on a stable state at the increment's strain: continuity holds, the stress drops,
+  // and the whole path still dissipates G_F / H per band.
+  const double H = 500.0;
+  const Material m(concrete(SecondBandOption::Orthogonal, 0.0));
+  const auto size = EffectiveSize::fixed(H);
+  const UpdateOptions release(SnapBackPolicy::Release, true);
+  MaterialPoint p;
+  double dissipated = 0.0;
+  int released = 0;
+  for (double d = 1e-7; !p.band || traction(m, *p.band) >= 1e-6 * test::kFt; d *= 1.05) {
+    const UpdateResult r = m.update(p, Voigt(d, 0.0, 0.0), size, release);
+    ASSERT_TRUE(r.converged()) << toString(r.status);
+    dissipated += r.dissipation;
+    released += r.released ? 1 : 0;
+  }
+  EXPECT_EQ(released, 1) << "the first band's snap-back";
+  Voigt stress = Voigt::Zero();
+  bool reported = false;
+  for (int i = 0; i < 4000 && !(p.secondBand && traction(m, *p.secondBand) < 1e-6 * test::kFt); ++i) {
+    const Voigt d(0.0, 1e-6 * (1.0 + i / 100.0), 0.0);
+    if (!p.secondBand && !reported) {  // the increment that opens the second band, under Report
+      MaterialPoint q = p;
+      const UpdateResult r = m.update(q, d, size, UpdateOptions(SnapBackPolicy::Report));
+      if (!r.converged()) {
+        reported = true;
+        EXPECT_EQ(r.status, UpdateStatus::SnapBack);
+        EXPECT_FALSE(q.secondBand) << "a reported snap-back changes nothing";
+        EXPECT_EQ(q.strain, p.strain);
+      }
+    }
+    const UpdateResult r = m.update(p, d, size, release);
+    ASSERT_TRUE(r.converged()) << toString(r.status) << " at step " << i;
+    ASSERT_GE(r.dissipation, 0.0);
+    if (r.released && p.secondBand) {
+      ++released;
+      EXPECT_LT(r.stress[1], stress[1]) << "the release drops the stress";
+    }
+    ASSERT_LE(continuityResidual(m, p), 1e-9 * test::kFt);
+    dissipated += r.dissipation;
+    stress = r.stress;
+  }
+  EXPECT_TRUE(reported);
+  EXPECT_EQ(released, 2) << "and the second band's";
+  const double gfOverH = bandFailureEnergy(m, H);
+  EXPECT_NEAR(dissipated, 2.0 * gfOverH, 1e-3 * 2.0 * gfOverH);
+}
+
 TEST(SecondBand, RefusesAnEffectiveSizeWithoutRoomForTwoBands) {
   const Material m(concrete(SecondBandOption::Orthogonal));
   MaterialPoint p;
