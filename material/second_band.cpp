@@ -277,28 +277,41 @@ UpdateResult EnrichedBand::releaseTwoBands(BandState& first, BandState& second, 
     if (p.solve.converged) guess = p.solve.jumps;
     return p;
   };
+  // hi: the last probe that converged (one that did not is stepped over, not bracketed).
   Probe hi = probe(bands[scanned]->integrity);
-  for (int k = 0; k < kMaxReleaseSteps && hi.x > 1e-300; ++k) {
-    Probe lo = probe(hi.x * kReleaseScanRatio);
+  double x = hi.x;
+  for (int k = 0; k < kMaxReleaseSteps && x > 1e-300; ++k) {
+    x *= kReleaseScanRatio;
+    Probe lo = probe(x);
     ++res.iterations;
+    if (!lo.solve.converged) continue;
     if (!(lo.g <= 0.0) || !(hi.g > 0.0)) {
       hi = lo;
       continue;
     }
     double la = std::log(lo.x), lb = std::log(hi.x), ga = lo.g, gb = hi.g;
-    Probe root = lo;
+    Probe below = lo, above = hi, root = lo;  // the bracket's ends (g <= 0, g > 0)
     int side = 0;
     for (int it = 0; it < 100 && lb - la > 1e-15 * std::abs(lb) + 1e-300; ++it) {  // Illinois in log x
       const double lc = (la * gb - lb * ga) / (gb - ga);
+      // Newton from the nearer end of the bracket (the last probe may lie on the other side);
+      // where it fails, bisect.
+      guess = (lc - la < lb - lc ? below : above).solve.jumps;
       root = probe(std::exp(lc));
+      if (!root.solve.converged) {
+        guess = above.solve.jumps;
+        root = probe(std::exp(0.5 * (la + lb)));
+        if (!root.solve.converged) break;
+      }
       ++res.iterations;
+      const double l = std::log(root.x);
       if (!(std::abs(root.g) > 1e-14)) break;
       if (root.g < 0.0) {
-        la = lc, ga = root.g;
+        la = l, ga = root.g, below = root;
         if (side == -1) gb *= 0.5;
         side = -1;
       } else {
-        lb = lc, gb = root.g;
+        lb = l, gb = root.g, above = root;
         if (side == +1) ga *= 0.5;
         side = +1;
       }

@@ -323,6 +323,38 @@ TEST(SecondBand, ASnapBackOfTheSecondBandIsReportedOrReleasedOntoAStableState) {
   EXPECT_NEAR(dissipated, 2.0 * gfOverH, 1e-3 * 2.0 * gfOverH);
 }
 
+TEST(SecondBand, ASecondBandOpeningAboveItsOnsetIsReleased) {
+  // A state recorded in the DEN 4b fine mesh with the option (H = 0.625 mm, step 52535): the
+  // first band (D = 0.98) still carries traction and shear when sigma_tt reaches f_t', so the
+  // second band opens with Y = 2.6 F(0) (docs/model.md, "A second band": the catch-up is a
+  // snap-back). Report: SnapBack, nothing changed. Release: a stable state with two bands.
+  const Material m(concrete(SecondBandOption::Orthogonal));
+  const EffectiveSize size{EffectiveSizeRule::SquareRoot, 0.0, 0.625, 0.625};
+  MaterialPoint p;
+  p.strain = Voigt(-0.00041146454265008362, 0.0005038783812382811, -0.00046239110023511322);
+  BandState b;
+  b.crackNormal = Vec2(0.55356887337757432, 0.83280339962531558);
+  b.jump = Vec2(-0.0004241941252864948, 0.0002926818531631657);
+  b.onsetStrain = Voigt(4.1042283794409401e-06, 5.6193150643467578e-05, 0.00012406250299841441);
+  b.integrity = 0.020936960954228222;
+  b.volumeFraction = 0.08;
+  p.band = b;
+  const Voigt increment(-1.6934860263671941e-08, 1.5812560849596806e-08, -2.4128001214851621e-08);
+  const Voigt before = m.stress(p);
+  MaterialPoint reported = p;
+  EXPECT_EQ(m.update(reported, increment, size, UpdateOptions(SnapBackPolicy::Report)).status, UpdateStatus::SnapBack);
+  EXPECT_FALSE(reported.secondBand);
+  EXPECT_EQ(reported.strain, p.strain);
+  const UpdateResult r = m.update(p, increment, size, UpdateOptions(SnapBackPolicy::Release));
+  ASSERT_TRUE(r.converged()) << toString(r.status);
+  EXPECT_TRUE(r.released);
+  ASSERT_TRUE(p.secondBand);
+  EXPECT_GT(p.secondBand->damage(), 0.0);
+  EXPECT_GE(r.dissipation, 0.0);
+  EXPECT_LE(continuityResidual(m, p), 1e-9 * test::kFt);
+  EXPECT_LT(principalStresses(r.stress).first, principalStresses(before).first) << "the release drops the stress";
+}
+
 TEST(SecondBand, RefusesAnEffectiveSizeWithoutRoomForTwoBands) {
   const Material m(concrete(SecondBandOption::Orthogonal));
   MaterialPoint p;
