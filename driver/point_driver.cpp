@@ -129,6 +129,8 @@ class Runner {
   bool peakInside(int k, const MixedTarget& t, const MaterialPoint& start, const StepOutcome& out) {
     if (!material_.enriched() || !start.band || !point_.band || !(point_.band->integrity < start.band->integrity))
       return false;
+    // Opening control traces one band; and a failed band's stress maxima are round-off.
+    if (start.secondBand || point_.secondBand || material_.enriched()->bandHasFailed(*start.band)) return false;
     OpeningTarget o;
     o.control = t.control;
     o.stress = t.stress;
