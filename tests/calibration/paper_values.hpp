@@ -1,11 +1,9 @@
 #pragma once
 // Parameters from Nguyen's enriched-MPM paper used by the calibration tests.
+#include "../material/paper_concrete.hpp"  // the DEN concrete: kE, kFt, kGF, kH, kN, kEp
 #include "material/damage_function.hpp"
 
 namespace ecm::test {
-
-// DEN concrete (G_F = 0.11 N/mm per the verified erratum; E_p = 8.184 MPa, n = 0.128, h = 0.05 mm).
-inline constexpr double kE = 32000.0, kFt = 3.0, kGF = 0.11, kH = 0.05, kN = 0.128, kEp = 8.184;
 
 inline DamageLawParams concreteShape(double n = kN) { return {kE, kFt, 0.0, n}; }
 

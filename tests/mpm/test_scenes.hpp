@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "../material/paper_concrete.hpp"
 #include "mpm/solver.hpp"
 
 namespace ecm::mpm::test {
@@ -17,17 +18,17 @@ inline MaterialParams elasticMaterial(double e = 32000.0, double nu = 0.0, doubl
   return m;
 }
 
-// The paper's DEN concrete (material/paper_concrete.hpp values) with a density.
+// The paper's DEN concrete (tests/material/paper_concrete.hpp) with a density.
 inline MaterialParams paperConcrete() {
   MaterialParams m;
   m.name = "den-concrete";
   m.model = ModelKind::Enriched;
-  m.elastic = {32000.0, 0.2, Hypothesis::PlaneStress};
+  m.elastic = {ecm::test::kE, ecm::test::kNu, Hypothesis::PlaneStress};
   m.density = 2.4e-9;
-  m.tensileStrength = 3.0;
-  m.softeningModulus = 8.184;
-  m.softeningExponent = 0.128;
-  m.bandWidth = 0.05;
+  m.tensileStrength = ecm::test::kFt;
+  m.softeningModulus = ecm::test::kEp;
+  m.softeningExponent = ecm::test::kN;
+  m.bandWidth = ecm::test::kH;
   return m;
 }
 
