@@ -285,7 +285,10 @@ Vec2 EnrichedBand::stabilityMargins(const BandState& b, const Mat2& jacobian, un
   if (stressControlled == 0 || !(kMargin > 0.0)) return {kMargin, 1.0};
   // Mixed control: the Jacobian of (jump, stress-controlled strains) has det K det D_ss
   // (Schur complement, D of Eq. (10)); D_ss scaled by E.
-  const Tangent d = consistentTangent(b, jacobian);
+  return {kMargin, stressControlledMargin(consistentTangent(b, jacobian), stressControlled)};
+}
+
+double EnrichedBand::stressControlledMargin(const Tangent& d, unsigned stressControlled) const {
   int idx[3], m = 0;
   for (int i = 0; i < 3; ++i)
     if (stressControlled & (1u << i)) idx[m++] = i;
@@ -299,7 +302,7 @@ Vec2 EnrichedBand::stabilityMargins(const BandState& b, const Mat2& jacobian, un
   } else {
     dMargin = d.eigenvalues().real().minCoeff();
   }
-  return {kMargin, dMargin / law_.law().youngsModulus};
+  return dMargin / law_.law().youngsModulus;
 }
 
 bool EnrichedBand::bandHasFailed(const BandState& b) const {

@@ -199,6 +199,9 @@ class EnrichedBand {
   // Both > 0 where the state with this K is stable under the caller's control (scaled,
   // continuous): the smallest real eigenvalue of K, and that of the stress-controlled block of D.
   Vec2 stabilityMargins(const BandState& b, const Mat2& jacobian, unsigned stressControlled) const;
+  // The smallest real eigenvalue of the stress-controlled block of a consistent tangent D
+  // (Eq. (10)), scaled by E: > 0 where mixed control has a stable branch (docs/model.md).
+  double stressControlledMargin(const Tangent& d, unsigned stressControlled) const;
 
   // K of Eq. (9) with the band's damage frozen at x (a_L = x a): always positive definite.
   Mat2 secantJacobian(const BandState& b, double x) const;

@@ -140,14 +140,7 @@ double EnrichedBand::twoBandMargin(const BandState& first, const BandState& seco
   const double bulk = 1.0 - first.volumeFraction - second.volumeFraction;
   const double kMargin = smallestRealPart(jacobian) * bandWidth_ * bulk / shearModulus_;
   if (stressControlled == 0 || !(kMargin > 0.0)) return kMargin;
-  const Tangent d = consistentTangent(first, second, jacobian);
-  int idx[3], m = 0;
-  for (int i = 0; i < 3; ++i)
-    if (stressControlled & (1u << i)) idx[m++] = i;
-  Eigen::MatrixXd block(m, m);
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) block(i, j) = d(idx[i], idx[j]);
-  return std::min(kMargin, block.eigenvalues().real().minCoeff() / law_.law().youngsModulus);
+  return std::min(kMargin, stressControlledMargin(consistentTangent(first, second, jacobian), stressControlled));
 }
 
 UpdateResult EnrichedBand::updateTwoBands(BandState& first, BandState& second, Voigt& strain, const Voigt& increment,
