@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace ecm {
+namespace ecm::driver {
 
 const std::vector<std::string>& presetNames() {
   static const std::vector<std::string> names = {"uniaxial_tension", "uniaxial_strain", "biaxial",
@@ -79,4 +79,4 @@ double openingAt(const Segment& s, double start, int k) {
   return k == n ? s.openingTarget : start + first * std::expm1(k * logq) / std::expm1(logq);
 }
 
-}  // namespace ecm
+}  // namespace ecm::driver

@@ -8,7 +8,7 @@
 
 #include "material/voigt.hpp"
 
-namespace ecm {
+namespace ecm::driver {
 
 enum class Control { Strain, Stress };
 
@@ -44,4 +44,4 @@ const std::vector<std::string>& presetNames();
 double openingAt(const Segment& s, double start, int k);
 std::vector<Segment> presetSegments(const PresetPath& preset, double poissonRatio);
 
-}  // namespace ecm
+}  // namespace ecm::driver

@@ -24,20 +24,20 @@ int main(int argc, char** argv) {
   }
   try {
     if (!study.empty()) {
-      const ecm::SnapBackStudy s = ecm::loadSnapBackStudy(study);
+      const ecm::driver::SnapBackStudy s = ecm::driver::loadSnapBackStudy(study);
       const auto dir = ecm::io::prepareOutputDir(out.empty() ? "out/snapback-study" : out);
-      const ecm::StudyResult r = ecm::runSnapBackStudy(s, dir, std::cout);
+      const ecm::driver::SnapBackStudyResult r = ecm::driver::runSnapBackStudy(s, dir, std::cout);
       return r.allRunsCompleted ? 0 : 2;
     }
-    const ecm::PointScene s = ecm::loadPointScene(scene);
+    const ecm::driver::PointScene s = ecm::driver::loadPointScene(scene);
     const auto dir = ecm::io::prepareOutputDir(out.empty() ? "out/point/" + std::filesystem::path(scene).stem().string() : out);
     ecm::io::Progress::Options options;
     options.label = "ecm-point " + s.name;
-    ecm::io::Progress progress(ecm::totalIncrements(s), options);
-    const ecm::PointRun run = ecm::runPoint(s, [&](const ecm::HistoryRow&, int done, int) { progress.update(done); });
+    ecm::io::Progress progress(ecm::driver::totalIncrements(s), options);
+    const ecm::driver::PointRun run = ecm::driver::runPoint(s, [&](const ecm::driver::HistoryRow&, int done, int) { progress.update(done); });
     progress.finish();
-    ecm::writePointOutputs(s, run, dir);
-    const ecm::PointSummary sum = ecm::summarise(s, run);
+    ecm::driver::writePointOutputs(s, run, dir);
+    const ecm::driver::PointSummary sum = ecm::driver::summarise(s, run);
     std::cout << "peak stress " << sum.peakStress << " MPa at strain " << sum.strainAtPeak << "; H x dissipation "
               << sum.energyPerArea << " N/mm";
     if (s.material.fractureEnergy > 0.0) std::cout << " (" << sum.energyPerArea / s.material.fractureEnergy << " G_F)";

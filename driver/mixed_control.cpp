@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-namespace ecm {
+namespace ecm::driver {
 
 namespace {
 
@@ -108,4 +108,4 @@ StepOutcome mixedControlStep(const PointUpdate& update, const Tangent& elastic, 
   return substepped(update, elastic, point, currentStress, target, s, 0);
 }
 
-}  // namespace ecm
+}  // namespace ecm::driver

@@ -9,7 +9,7 @@
 #include "driver/load_path.hpp"
 #include "material/material.hpp"
 
-namespace ecm {
+namespace ecm::driver {
 
 struct MixedTarget {
   std::array<Control, 3> control{Control::Strain, Control::Strain, Control::Strain};
@@ -55,4 +55,4 @@ inline StepOutcome mixedControlStep(const Material& material, MaterialPoint& poi
                           material.stiffness(), point, currentStress, target, s);
 }
 
-}  // namespace ecm
+}  // namespace ecm::driver

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-namespace ecm {
+namespace ecm::driver {
 
 OpeningOutcome openingControlStep(const EnrichedBand& model, MaterialPoint& point, const OpeningTarget& t,
                                   double tolerance, int maxIterations) {
@@ -94,4 +94,4 @@ OpeningOutcome openingControlStep(const EnrichedBand& model, MaterialPoint& poin
   return out;
 }
 
-}  // namespace ecm
+}  // namespace ecm::driver

@@ -5,7 +5,7 @@
 // the stress targets and traction continuity, Eq. (6). Newton with the exact Jacobian.
 #include "driver/mixed_control.hpp"
 
-namespace ecm {
+namespace ecm::driver {
 
 struct OpeningTarget {
   std::array<Control, 3> control{Control::Strain, Control::Strain, Control::Strain};
@@ -23,4 +23,4 @@ struct OpeningOutcome {
 OpeningOutcome openingControlStep(const EnrichedBand& model, MaterialPoint& point, const OpeningTarget& target,
                                   double tolerance, int maxIterations = 100);
 
-}  // namespace ecm
+}  // namespace ecm::driver

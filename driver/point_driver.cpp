@@ -7,7 +7,7 @@
 
 #include "driver/opening_control.hpp"
 
-namespace ecm {
+namespace ecm::driver {
 
 namespace {
 
@@ -567,4 +567,4 @@ PointSummary summarise(const PointScene& scene, const PointRun& run) {
   return s;
 }
 
-}  // namespace ecm
+}  // namespace ecm::driver

@@ -9,7 +9,7 @@
 #include "driver/load_path.hpp"
 #include "driver/mixed_control.hpp"
 
-namespace ecm {
+namespace ecm::driver {
 
 enum class OnSnapBack {
   Stop,  // report and stop the run
@@ -92,4 +92,4 @@ PointRun runPoint(const PointScene& scene, const RowObserver& observe = {});
 PointSummary summarise(const PointScene& scene, const PointRun& run);
 int totalIncrements(const PointScene& scene);
 
-}  // namespace ecm
+}  // namespace ecm::driver

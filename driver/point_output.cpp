@@ -7,7 +7,7 @@
 #include "io/gnuplot.hpp"
 #include "io/json_summary.hpp"
 
-namespace ecm {
+namespace ecm::driver {
 
 double normalTraction(const HistoryRow& r) {
   if (!r.crackNormal.any()) return r.stress[0];
@@ -116,4 +116,4 @@ void writePointOutputs(const PointScene& scene, const PointRun& run, const std::
   writePointPlots(scene, dir);
 }
 
-}  // namespace ecm
+}  // namespace ecm::driver

@@ -7,7 +7,7 @@
 
 #include "driver/point_driver.hpp"
 
-namespace ecm {
+namespace ecm::driver {
 
 void writeHistoryCsv(const PointRun& run, const std::filesystem::path& file, bool secondBandColumns = false);
 nlohmann::json pointSummaryJson(const PointScene& scene, const PointRun& run);
@@ -18,4 +18,4 @@ void writePointOutputs(const PointScene& scene, const PointRun& run, const std::
 // Traction normal to the crack, n . sigma . n (MPa); sigma_xx before cracking.
 double normalTraction(const HistoryRow& r);
 
-}  // namespace ecm
+}  // namespace ecm::driver

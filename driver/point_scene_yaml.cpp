@@ -4,7 +4,7 @@
 
 #include "io/material_yaml.hpp"
 
-namespace ecm {
+namespace ecm::driver {
 
 namespace {
 
@@ -97,4 +97,4 @@ PointScene readPointScene(const YamlMap& map) {
 
 PointScene loadPointScene(const std::filesystem::path& file) { return readPointScene(io::loadYamlFile(file)); }
 
-}  // namespace ecm
+}  // namespace ecm::driver

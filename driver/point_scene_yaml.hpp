@@ -6,9 +6,9 @@
 #include "driver/point_driver.hpp"
 #include "io/yaml_input.hpp"
 
-namespace ecm {
+namespace ecm::driver {
 
 PointScene loadPointScene(const std::filesystem::path& file);
 PointScene readPointScene(const io::YamlMap& map);
 
-}  // namespace ecm
+}  // namespace ecm::driver

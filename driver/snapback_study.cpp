@@ -14,7 +14,7 @@
 #include "io/yaml_input.hpp"
 #include "material/uniaxial_closed_form.hpp"
 
-namespace ecm {
+namespace ecm::driver {
 
 namespace {
 
@@ -97,11 +97,11 @@ SnapBackStudy loadSnapBackStudy(const std::filesystem::path& file) {
   return s;
 }
 
-StudyResult runSnapBackStudy(const SnapBackStudy& study, const std::filesystem::path& dir, std::ostream& out) {
+SnapBackStudyResult runSnapBackStudy(const SnapBackStudy& study, const std::filesystem::path& dir, std::ostream& out) {
   const MaterialParams& m = study.material;
   const double e = m.elastic.youngsModulus, ft = m.tensileStrength, gf = m.fractureEnergy;
   const DamageLawParams law = m.band().law();
-  StudyResult result;
+  SnapBackStudyResult result;
   result.snapBackSize1D = m.bandWidth * (e + m.softeningModulus) / m.softeningModulus;
   result.snapBackSize = snapBackSize(m);
   result.criticalSize = criticalSmearedSize(e, ft, gf);
@@ -268,4 +268,4 @@ StudyResult runSnapBackStudy(const SnapBackStudy& study, const std::filesystem::
   return result;
 }
 
-}  // namespace ecm
+}  // namespace ecm::driver

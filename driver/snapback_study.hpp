@@ -12,7 +12,7 @@
 
 #include "driver/point_driver.hpp"
 
-namespace ecm {
+namespace ecm::driver {
 
 struct SnapBackStudy {
   std::string name = "snapback-study";
@@ -48,7 +48,7 @@ struct StudyRow {
   std::string smearedNote;
 };
 
-struct StudyResult {
+struct SnapBackStudyResult {
   std::vector<StudyRow> rows;
   double snapBackSize1D = 0.0;  // h (E + E_p) / E_p
   double snapBackSize = 0.0;    // E / max(-d sigma / d w) of the band's actual curve (nu included)
@@ -57,6 +57,6 @@ struct StudyResult {
 };
 
 SnapBackStudy loadSnapBackStudy(const std::filesystem::path& file);
-StudyResult runSnapBackStudy(const SnapBackStudy& study, const std::filesystem::path& dir, std::ostream& table);
+SnapBackStudyResult runSnapBackStudy(const SnapBackStudy& study, const std::filesystem::path& dir, std::ostream& table);
 
-}  // namespace ecm
+}  // namespace ecm::driver

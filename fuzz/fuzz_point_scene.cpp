@@ -9,15 +9,15 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  ecm::PointScene scene;
+  ecm::driver::PointScene scene;
   try {
     scene = ecm::readPointScene(ecm::io::parseYaml(text, "fuzz.yaml"));
   } catch (const ecm::io::InputError&) {
     return 0;
   }
-  if (ecm::totalIncrements(scene) > 300) return 0;
-  const ecm::PointRun run = ecm::runPoint(scene);
-  for (const ecm::HistoryRow& r : run.history)
+  if (ecm::driver::totalIncrements(scene) > 300) return 0;
+  const ecm::driver::PointRun run = ecm::driver::runPoint(scene);
+  for (const ecm::driver::HistoryRow& r : run.history)
     if (!r.stress.allFinite() || !r.strain.allFinite() || !std::isfinite(r.dissipation) || r.dissipation < -1e-12)
       std::abort();
   return 0;

@@ -14,7 +14,7 @@ TEST(CalibratedMaterial, PointDriverDissipatesTheCalibratedFractureEnergy) {
   const DamageLawParams shape{32000.0, 3.0, 1.0, 0.128};
   const auto solved = calibration::solveSofteningModulus(shape, 0.11, 0.05);
   for (double bigH : {2.5, 50.0, 1000.0}) {
-    PointScene s;
+    driver::PointScene s;
     s.material.model = ModelKind::Enriched;
     s.material.elastic = {32000.0, 0.2, Hypothesis::PlaneStress};
     s.material.tensileStrength = 3.0;
@@ -22,17 +22,17 @@ TEST(CalibratedMaterial, PointDriverDissipatesTheCalibratedFractureEnergy) {
     s.material.softeningExponent = 0.128;
     s.material.bandWidth = 0.05;
     s.effectiveSize = bigH;
-    PresetPath p;
+    driver::PresetPath p;
     p.name = "uniaxial_tension";
     p.strain = 5e-5;
     p.increments = 10;
     p.opening = 20.0;  // mm: the traction there is below 1e-4 f_t'
     p.firstOpeningIncrement = 1e-7;
-    s.path = presetSegments(p, 0.2);
+    s.path = driver::presetSegments(p, 0.2);
     s.path.back().increments = 2000;
-    const PointRun run = runPoint(s);
+    const driver::PointRun run = driver::runPoint(s);
     ASSERT_TRUE(run.completed) << run.failure;
-    EXPECT_NEAR(summarise(s, run).energyPerArea, 0.11, 0.005 * 0.11) << "H = " << bigH;
+    EXPECT_NEAR(driver::summarise(s, run).energyPerArea, 0.11, 0.005 * 0.11) << "H = " << bigH;
   }
 }
 

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-namespace ecm {
+namespace ecm::driver {
 namespace {
 
 const ElasticParams kElastic{32000.0, 0.2, Hypothesis::PlaneStress};
@@ -61,4 +61,4 @@ TEST(MixedControl, ReportsAnIncrementThatCannotBeRescued) {
 }
 
 }  // namespace
-}  // namespace ecm
+}  // namespace ecm::driver

@@ -10,7 +10,7 @@
 #include "material/paper_concrete.hpp"
 #include "material/uniaxial_closed_form.hpp"
 
-namespace ecm {
+namespace ecm::driver {
 namespace {
 
 MaterialParams concrete(ModelKind kind, double nu = test::kNu) {
@@ -247,4 +247,4 @@ TEST(PointDriver, HistoryAndSummaryShowTheSecondBand) {
 }
 
 }  // namespace
-}  // namespace ecm
+}  // namespace ecm::driver

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-namespace ecm {
+namespace ecm::driver {
 namespace {
 
 const std::string kMaterial = R"(material:
@@ -98,9 +98,9 @@ path: {preset: uniaxial_tension, strain: 1e-4, increments: 5, opening: 0.2}
 }
 
 }  // namespace
-}  // namespace ecm
+}  // namespace ecm::driver
 
-namespace ecm {
+namespace ecm::driver {
 namespace {
 
 // The second-band option (docs/model.md, "A second band") in a point scene's material.
@@ -160,4 +160,4 @@ TEST(PointSceneYaml, RejectsOpeningControlWithTheSecondBand) {
 }
 
 }  // namespace
-}  // namespace ecm
+}  // namespace ecm::driver

@@ -11,7 +11,7 @@
 #include "material/paper_concrete.hpp"
 #include "material/uniaxial_closed_form.hpp"
 
-namespace ecm {
+namespace ecm::driver {
 namespace {
 
 struct Case {
@@ -195,4 +195,4 @@ TEST(PointSweep, AnEffectiveSizeBelowTheBoundIsRefusedBeforeRunning) {
 }
 
 }  // namespace
-}  // namespace ecm
+}  // namespace ecm::driver

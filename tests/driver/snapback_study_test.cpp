@@ -8,7 +8,7 @@
 #include "io/temp_dir.hpp"
 #include "material/paper_concrete.hpp"
 
-namespace ecm {
+namespace ecm::driver {
 namespace {
 
 TEST(SnapBackStudy, EnrichedCurveIsOneForAllSizesAndTheSmearedCrackIsRefusedBeyondHcrit) {
@@ -26,7 +26,7 @@ TEST(SnapBackStudy, EnrichedCurveIsOneForAllSizesAndTheSmearedCrackIsRefusedBeyo
   s.strainIncrements = 200;
   s.openingIncrements = 300;
   std::ostringstream table;
-  const StudyResult r = runSnapBackStudy(s, dir.path(), table);
+  const SnapBackStudyResult r = runSnapBackStudy(s, dir.path(), table);
   ASSERT_TRUE(r.allRunsCompleted);
   ASSERT_EQ(r.rows.size(), 4u);
   // h (E + E_p)/E_p (docs/model.md, identities) and 2 E G_F / f_t'^2.
@@ -62,4 +62,4 @@ TEST(SnapBackStudy, EnrichedCurveIsOneForAllSizesAndTheSmearedCrackIsRefusedBeyo
 }
 
 }  // namespace
-}  // namespace ecm
+}  // namespace ecm::driver

@@ -51,7 +51,7 @@
 #include "io/yaml_input.hpp"
 #include "mpm/scene.hpp"
 
-namespace ecm::mpm {
+namespace ecm::study {
 
 enum class StudyKind { Mpm, Point };
 enum class StudyDesign { Grid, OneAtATime };
@@ -99,8 +99,8 @@ struct PlannedRun {
   std::vector<std::string> values;  // per knob: the value as text (the base value if not set)
   bool reference = false;
   std::string sceneText;            // the edited scene (YAML), kept in the run folder
-  std::optional<Scene> scene;       // kind mpm
-  std::optional<PointScene> point;  // kind point
+  std::optional<mpm::Scene> scene;       // kind mpm
+  std::optional<driver::PointScene> point;  // kind point
   std::size_t particles = 0;        // mpm: seeded particles
   double estimatedSteps = 0.0;      // mpm: end time / time step; point: increments
 };
@@ -175,7 +175,7 @@ struct BarVibration {
   double period = 0.0;     // s
   double amplitude = 0.0;  // N
 };
-BarVibration barVibrationClosedForm(const Scene& scene);
+BarVibration barVibrationClosedForm(const mpm::Scene& scene);
 
 // Period and amplitude of a square-wave-like reaction history: sign changes found with a
 // Schmitt trigger at +-amplitude/2 (ringing near zero is not counted), period = twice the mean
@@ -204,4 +204,4 @@ UniaxialReference uniaxialTensionClosedForm(const MaterialParams& material, doub
 double maxDeviation(const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& curveX,
                     const std::vector<double>& curveY);
 
-}  // namespace ecm::mpm
+}  // namespace ecm::study

@@ -9,14 +9,14 @@
 
 #include "material/damage_function.hpp"
 #include "material/uniaxial_closed_form.hpp"
-#include "mpm/study.hpp"
+#include "study/study.hpp"
 
-namespace ecm::mpm {
+namespace ecm::study {
 
-BarVibration barVibrationClosedForm(const Scene& scene) {
-  const Body* bar = nullptr;
-  for (const Body& b : scene.bodies)
-    if (!b.subtract && b.shape.kind == ShapeKind::Rectangle) {
+BarVibration barVibrationClosedForm(const mpm::Scene& scene) {
+  const mpm::Body* bar = nullptr;
+  for (const mpm::Body& b : scene.bodies)
+    if (!b.subtract && b.shape.kind == mpm::ShapeKind::Rectangle) {
       bar = &b;
       break;
     }
@@ -148,4 +148,4 @@ double maxDeviation(const std::vector<double>& x, const std::vector<double>& y, 
   return worst;
 }
 
-}  // namespace ecm::mpm
+}  // namespace ecm::study

@@ -6,12 +6,12 @@
 #include <stdexcept>
 #include <utility>
 
-#include "mpm/study.hpp"
-#include "mpm/study_internal.hpp"
+#include "study/study.hpp"
+#include "study/internal.hpp"
 
-namespace ecm::mpm {
+namespace ecm::study {
 
-namespace study_detail {
+namespace detail {
 
 // Shortest round-trip text of a number.
 std::string numberText(double v) {
@@ -69,9 +69,9 @@ std::vector<PathStep> parsePath(const std::string& path) {
   return steps;
 }
 
-}  // namespace study_detail
+}  // namespace detail
 
-using namespace study_detail;
+using namespace detail;
 
 void setKeyPath(YAML::Node& root, const std::string& path, const YAML::Node& value) {
   const std::vector<PathStep> steps = parsePath(path);
@@ -227,4 +227,4 @@ void applyTimeScale(YAML::Node& scene, double s) {
   }
 }
 
-}  // namespace ecm::mpm
+}  // namespace ecm::study

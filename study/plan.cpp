@@ -10,12 +10,12 @@
 #include "material/linear_elastic.hpp"
 #include "mpm/scene_yaml.hpp"
 #include "mpm/seeding.hpp"
-#include "mpm/study.hpp"
-#include "mpm/study_internal.hpp"
+#include "study/study.hpp"
+#include "study/internal.hpp"
 
-namespace ecm::mpm {
+namespace ecm::study {
 
-using namespace study_detail;
+using namespace detail;
 
 namespace {
 
@@ -166,7 +166,7 @@ Study loadStudyFile(const std::filesystem::path& path) { return readStudy(io::lo
 // ---------------------------------------------------------------------------------------------
 // The plan
 
-namespace study_detail {
+namespace detail {
 
 std::string readText(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -176,7 +176,7 @@ std::string readText(const std::filesystem::path& path) {
   return text.str();
 }
 
-}  // namespace study_detail
+}  // namespace detail
 
 namespace {
 
@@ -314,16 +314,16 @@ std::vector<PlannedRun> planStudy(const Study& study) {
     try {
       const YamlMap map(root, baseFile);
       if (study.kind == StudyKind::Mpm) {
-        run.scene = readScene(map);
+        run.scene = mpm::readScene(map);
         try {
-          run.particles = seedParticles(*run.scene).size();
+          run.particles = mpm::seedParticles(*run.scene).size();
         } catch (const std::invalid_argument& e) {
           throw InputError(baseFile, 1, e.what());
         }
         double speed = 0.0;
         for (const auto& mat : run.scene->materials)
           speed = std::max(speed, std::sqrt(pWaveModulus(mat.elastic) / mat.density));
-        const Grid& g = run.scene->grid;
+        const mpm::Grid& g = run.scene->grid;
         run.estimatedSteps = run.scene->endTime * speed / (run.scene->solver.cfl * std::min(g.cellSize[0], g.cellSize[1]));
         if (!study.condition.empty() && !findCondition(run.scene->conditions, study.condition))
           throw InputError(study.file, study.referenceLine, what + "the scene has no condition '" + study.condition + "'");
@@ -335,16 +335,16 @@ std::vector<PlannedRun> planStudy(const Study& study) {
           }
         }
       } else {
-        run.point = readPointScene(map);
+        run.point = driver::readPointScene(map);
         run.particles = 1;
         run.estimatedSteps = totalIncrements(*run.point);
         if (study.reference == ReferenceKind::UniaxialTension) {
-          const PointScene& p = *run.point;
+          const driver::PointScene& p = *run.point;
           bool uniaxial = p.material.model == ModelKind::Enriched && p.material.elastic.hypothesis == Hypothesis::PlaneStress;
           double previous = 0.0;
-          for (const Segment& seg : p.path) {
-            uniaxial = uniaxial && !seg.openingControl && seg.control[0] == Control::Strain &&
-                       seg.control[1] == Control::Stress && seg.control[2] == Control::Stress && seg.target[1] == 0.0 &&
+          for (const driver::Segment& seg : p.path) {
+            uniaxial = uniaxial && !seg.openingControl && seg.control[0] == driver::Control::Strain &&
+                       seg.control[1] == driver::Control::Stress && seg.control[2] == driver::Control::Stress && seg.target[1] == 0.0 &&
                        seg.target[2] == 0.0 && seg.target[0] >= previous;
             previous = seg.target[0];
           }
@@ -366,4 +366,4 @@ std::vector<PlannedRun> planStudy(const Study& study) {
   return plan;
 }
 
-}  // namespace ecm::mpm
+}  // namespace ecm::study

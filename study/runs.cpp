@@ -22,12 +22,12 @@
 #include "io/json_summary.hpp"
 #include "io/output_dir.hpp"
 #include "mpm/run.hpp"
-#include "mpm/study.hpp"
-#include "mpm/study_internal.hpp"
+#include "study/study.hpp"
+#include "study/internal.hpp"
 
-namespace ecm::mpm {
+namespace ecm::study {
 
-using namespace study_detail;
+using namespace detail;
 
 // ---------------------------------------------------------------------------------------------
 // Running
@@ -65,13 +65,13 @@ double jsonNumber(const nlohmann::json& j, const char* key) {
 struct ReferenceData {
   bool available = false;
   double peakLoad = NAN, peakReaction = NAN, dissipated = NAN;  // mpm run reference
-  PointRun point;                            // point run reference
+  driver::PointRun point;                            // point run reference
   std::vector<double> pathParameter;         // point: strain path arc length of the reference rows
   double peakStress = NAN;
 };
 
 // Arc length of the strain path along the rows (engineering shear components).
-std::vector<double> strainArcLength(const PointRun& run) {
+std::vector<double> strainArcLength(const driver::PointRun& run) {
   std::vector<double> s;
   double total = 0.0;
   for (std::size_t i = 0; i < run.history.size(); ++i) {
@@ -130,8 +130,8 @@ class Executor {
   };
 
   // One execution of an mpm run; when isolated, the peak RSS (MB) and CPU time (s) of its process.
-  Usage executeMpm(const Scene& scene, const std::filesystem::path& dir) const {
-    RunOptions o;
+  Usage executeMpm(const mpm::Scene& scene, const std::filesystem::path& dir) const {
+    mpm::RunOptions o;
     o.outputDir = dir;
     o.threads = options_.threads;
     o.snapshots = false;
@@ -139,7 +139,7 @@ class Executor {
     o.progress = false;
     if (!options_.isolate) {
       try {
-        runScene(scene, o);
+        mpm::runScene(scene, o);
       } catch (const std::exception& e) {  // an invalid scene (e.g. seeding): the run fails, the study goes on
         std::ofstream(dir / "error.txt") << e.what() << "\n";
       }
@@ -154,7 +154,7 @@ class Executor {
       ::prctl(PR_SET_PDEATHSIG, SIGTERM);  // a run does not outlive its study
       int code = 3;
       try {
-        code = runScene(scene, o).completed ? 0 : 1;
+        code = mpm::runScene(scene, o).completed ? 0 : 1;
       } catch (const std::exception& e) {
         std::ofstream(dir / "error.txt") << e.what() << "\n";
       } catch (...) {
@@ -305,16 +305,16 @@ class Executor {
 
   void runPointScene(const PlannedRun& p, const std::filesystem::path& dir, RunRecord& r, ReferenceData& ref,
                      nlohmann::json& refJson) const {
-    const PointScene& scene = *p.point;
-    PointRun run;
+    const driver::PointScene& scene = *p.point;
+    driver::PointRun run;
     for (int rep = 0; rep < study_.repeat; ++rep) {
       const auto start = std::chrono::steady_clock::now();
-      run = runPoint(scene);
+      run = driver::runPoint(scene);
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       r.wallTime = std::isnan(r.wallTime) ? wall : std::min(r.wallTime, wall);
     }
-    writeHistoryCsv(run, dir / "history.csv");
-    io::writeJsonSummary(pointSummaryJson(scene, run), dir / "summary.json");
+    driver::writeHistoryCsv(run, dir / "history.csv");
+    io::writeJsonSummary(driver::pointSummaryJson(scene, run), dir / "summary.json");
     r.status = run.completed ? "completed" : "failed";
     r.message = run.failure;
     const int increments = run.history.empty() ? 0 : run.history.back().increment;
@@ -322,16 +322,16 @@ class Executor {
     r.particles = 1;
     r.updatesPerSecond = r.wallTime > 0.0 ? increments / r.wallTime : NAN;
     r.substepped = static_cast<double>(
-        std::count_if(run.history.begin(), run.history.end(), [](const HistoryRow& h) { return h.substeps > 1; }));
+        std::count_if(run.history.begin(), run.history.end(), [](const driver::HistoryRow& h) { return h.substeps > 1; }));
     if (!run.completed || run.history.empty()) return;
     const double ft = scene.material.tensileStrength > 0.0 ? scene.material.tensileStrength : 1.0;
-    const PointSummary sum = summarise(scene, run);
+    const driver::PointSummary sum = driver::summarise(scene, run);
     if (study_.reference == ReferenceKind::UniaxialTension) {
       try {
         const UniaxialReference cf =
             uniaxialTensionClosedForm(scene.material, scene.effectiveSize, run.history.back().strain[0]);
         std::vector<double> x, y;
-        for (const HistoryRow& h : run.history) x.push_back(h.strain[0]), y.push_back(h.stress[0]);
+        for (const driver::HistoryRow& h : run.history) x.push_back(h.strain[0]), y.push_back(h.stress[0]);
         setMetric(r, "stress_path", maxDeviation(cf.strain, cf.stress, x, y) / ft);
         setMetric(r, "dissipation", relative(run.history.back().dissipation, cf.dissipation));
         setMetric(r, "peak_stress", relative(sum.peakStress, cf.peakStress));
@@ -361,8 +361,8 @@ class Executor {
     double worst = 0.0;
     for (int c = 0; c < 3; ++c) {
       std::vector<double> refY, y;
-      for (const HistoryRow& h : ref.point.history) refY.push_back(h.stress[c]);
-      for (const HistoryRow& h : run.history) y.push_back(h.stress[c]);
+      for (const driver::HistoryRow& h : ref.point.history) refY.push_back(h.stress[c]);
+      for (const driver::HistoryRow& h : run.history) y.push_back(h.stress[c]);
       worst = std::max(worst, maxDeviation(ref.pathParameter, refY, s, y));
     }
     setMetric(r, "stress_path", worst / ft);
@@ -416,4 +416,4 @@ StudyResult runStudy(const Study& study, const std::vector<PlannedRun>& plan, co
   return result;
 }
 
-}  // namespace ecm::mpm
+}  // namespace ecm::study

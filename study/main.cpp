@@ -1,4 +1,4 @@
-// ecm-study: speed versus accuracy over a grid of scene settings (format in mpm/study.hpp).
+// ecm-study: speed versus accuracy over a grid of scene settings (format in study/study.hpp).
 //   ecm-study STUDY.yaml [-o|--out DIR] [--threads N] [--list] [--resume] [--in-process] [-q]
 // Exit status: 0 every run completed, 1 some run failed (see study.csv), 2 bad input or output folder.
 #include <CLI/CLI.hpp>
@@ -7,12 +7,12 @@
 #include <iostream>
 
 #include "io/output_error.hpp"
-#include "mpm/study.hpp"
+#include "study/study.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"ecm-study: wall time, memory and error of a scene over a grid of settings (units: mm, N, MPa, t, s)"};
   std::string studyPath, outDir;
-  ecm::mpm::StudyOptions options;
+  ecm::study::StudyOptions options;
   bool list = false, inProcess = false, quiet = false, resume = false;
   app.add_option("study", studyPath, "study file (YAML)")->required()->check(CLI::ExistingFile);
   app.add_option("-o,--out", outDir, "output folder (default: out/STUDY-NAME)");
@@ -24,10 +24,10 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   try {
-    const ecm::mpm::Study study = ecm::mpm::loadStudyFile(studyPath);
-    const std::vector<ecm::mpm::PlannedRun> plan = ecm::mpm::planStudy(study);
+    const ecm::study::Study study = ecm::study::loadStudyFile(studyPath);
+    const std::vector<ecm::study::PlannedRun> plan = ecm::study::planStudy(study);
     if (list) {
-      const bool mpm = study.kind == ecm::mpm::StudyKind::Mpm;
+      const bool mpm = study.kind == ecm::study::StudyKind::Mpm;
       double total = 0.0;
       for (const auto& r : plan) {
         const double work = static_cast<double>(r.particles) * r.estimatedSteps;
@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
     options.resume = resume;
     options.progress = !quiet;
     options.table = &std::cout;
-    const ecm::mpm::StudyResult r = ecm::mpm::runStudy(study, plan, options);
+    const ecm::study::StudyResult r = ecm::study::runStudy(study, plan, options);
     std::fprintf(stderr, "%zu runs -> %s (study.csv, summary.json, pareto.png)\n", r.runs.size(),
                  options.outputDir.string().c_str());
     return r.allCompleted ? 0 : 1;

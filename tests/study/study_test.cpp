@@ -1,4 +1,4 @@
-// ecm-study (mpm/study.hpp): the study file is checked like every input, knob values are
+// ecm-study (study/study.hpp): the study file is checked like every input, knob values are
 // written into the scene and checked by the scene reader, errors fall with refinement against
 // the closed forms, and the Pareto marking keeps exactly the non-dominated settings.
 #include <gtest/gtest.h>
@@ -11,9 +11,9 @@
 
 #include "../io/temp_dir.hpp"
 #include "io/csv_reader.hpp"
-#include "mpm/study.hpp"
+#include "study/study.hpp"
 
-namespace ecm::mpm::test {
+namespace ecm::study::test {
 namespace {
 
 using ecm::test::expectContains;
@@ -90,7 +90,7 @@ TEST(StudyPlan, GridAndOneAtATimeDesigns) {
   const auto grid = planStudy(parse(barStudy("  solver.cfl: [0.2, 0.3]\n  solver.scheme: [usl, musl, usf]\n"), tmp));
   ASSERT_EQ(grid.size(), 6u);
   EXPECT_EQ(grid[1].label, "solver.cfl=0.2 solver.scheme=musl");  // the last knob varies fastest
-  EXPECT_EQ(grid[1].scene->solver.scheme, UpdateScheme::MUSL);
+  EXPECT_EQ(grid[1].scene->solver.scheme, mpm::UpdateScheme::MUSL);
   EXPECT_DOUBLE_EQ(grid[4].scene->solver.cfl, 0.3);
 
   // One at a time around the base (cfl 0.3, usl in the scene): the base, then each knob's other values.
@@ -271,4 +271,4 @@ TEST(Study, PointIncrementsAgainstTheClosedForm) {
 }
 
 }  // namespace
-}  // namespace ecm::mpm::test
+}  // namespace ecm::study::test

@@ -7,12 +7,12 @@
 
 #include "io/atomic_file.hpp"
 #include "io/gnuplot.hpp"
-#include "mpm/study.hpp"
-#include "mpm/study_internal.hpp"
+#include "study/study.hpp"
+#include "study/internal.hpp"
 
-namespace ecm::mpm {
+namespace ecm::study {
 
-using namespace study_detail;
+using namespace detail;
 
 std::vector<bool> paretoFront(const std::vector<double>& cost, const std::vector<double>& error) {
   const std::size_t n = std::min(cost.size(), error.size());
@@ -49,7 +49,7 @@ void cell(std::string& text, const std::string& field) {
 
 }  // namespace
 
-namespace study_detail {
+namespace detail {
 
 nlohmann::json jsonValue(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
@@ -206,6 +206,6 @@ nlohmann::json summaryJson(const Study& study, const StudyResult& result, const 
           {"units", "mm, N, MPa, t, s"}};
 }
 
-}  // namespace study_detail
+}  // namespace detail
 
-}  // namespace ecm::mpm
+}  // namespace ecm::study

@@ -1,5 +1,5 @@
 #pragma once
-// Internal to ecm-study (mpm/study_*.cpp), not part of study.hpp: the helpers its files share.
+// Internal to ecm-study (study/*.cpp), not part of study.hpp: the helpers its files share.
 #include <cstddef>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "mpm/study.hpp"
+#include "study/study.hpp"
 
-namespace ecm::mpm::study_detail {
+namespace ecm::study::detail {
 
-// --- study_knobs.cpp: values as text, key paths ---
+// --- knobs.cpp: values as text, key paths ---
 
 // Shortest round-trip text of a number.
 std::string numberText(double v);
@@ -30,12 +30,12 @@ struct PathStep {
 // Throws std::invalid_argument for a malformed path.
 std::vector<PathStep> parsePath(const std::string& path);
 
-// --- study_plan.cpp ---
+// --- plan.cpp ---
 
 // A whole file as text; io::InputError if it cannot be opened.
 std::string readText(const std::filesystem::path& path);
 
-// --- study_report.cpp: the outputs ---
+// --- report.cpp: the outputs ---
 
 nlohmann::json jsonValue(double v);  // null for a non-finite number
 std::string shortNumber(double v, int precision = 3);  // "-" for a non-finite number
@@ -44,4 +44,4 @@ void writeTable(const Study& study, const StudyResult& result, std::ostream& out
 void plotPareto(const Study& study, const StudyResult& result, const std::filesystem::path& dir);
 nlohmann::json summaryJson(const Study& study, const StudyResult& result, const StudyOptions& options);
 
-}  // namespace ecm::mpm::study_detail
+}  // namespace ecm::study::detail
