@@ -39,7 +39,7 @@ void BM_Elastic(benchmark::State& st) {
 BENCHMARK(BM_Elastic);
 
 void BM_EnrichedIntact(benchmark::State& st) {
-  const EnrichedBand model(concrete());
+  const TwoPhasePoint model(concrete());
   std::vector<Voigt> strains = batchStrains();
   const auto size = EffectiveSize::fixed(2.5);
   std::optional<BandState> onset;
@@ -56,16 +56,16 @@ void BM_EnrichedIntact(benchmark::State& st) {
 BENCHMARK(BM_EnrichedIntact);
 
 // A point driven 40 increments past onset in tension and shear (D ~ 0.98).
-EnrichedState crackedPoint(const EnrichedBand& model, const EffectiveSize& size) {
+EnrichedState crackedPoint(const TwoPhasePoint& model, const EffectiveSize& size) {
   EnrichedState s;
   for (int i = 0; i < 40; ++i) model.update(s, Voigt(5e-6, -1e-6, 1e-6), size);
   return s;
 }
 
 // Times updateCracked of `s` by `increment`, from the same state each time; range(0): tangent.
-void timeCrackedUpdate(benchmark::State& st, const EnrichedBand& model, const EnrichedState& s, const Voigt& increment) {
+void timeCrackedUpdate(benchmark::State& st, const TwoPhasePoint& model, const EnrichedState& s, const Voigt& increment) {
   if (!s.band) return st.SkipWithError("point did not crack");
-  const UpdateOptions options{SnapBackPolicy::Report, st.range(0) != 0};
+  const UpdateOptions options{SnapBackPolicy::Stop, st.range(0) != 0};
   for (auto _ : st) {
     BandState band = *s.band;
     Voigt strain = s.strain;
@@ -75,7 +75,7 @@ void timeCrackedUpdate(benchmark::State& st, const EnrichedBand& model, const En
 }
 
 void BM_EnrichedCrackedSoftening(benchmark::State& st) {
-  const EnrichedBand model(concrete());
+  const TwoPhasePoint model(concrete());
   const auto size = EffectiveSize::fixed(2.5);
   const EnrichedState s = crackedPoint(model, size);
   timeCrackedUpdate(st, model, s, kStep);
@@ -90,7 +90,7 @@ BENCHMARK(BM_EnrichedCrackedSoftening)->Arg(1)->Arg(0)->ArgName("tangent");
 // A cracked point whose band unloads (the elastic predictor is the answer): in the DEN runs
 // about 80 % of the cracked updates are of this kind (counted on the coarse mesh).
 void BM_EnrichedCrackedUnloading(benchmark::State& st) {
-  const EnrichedBand model(concrete());
+  const TwoPhasePoint model(concrete());
   const auto size = EffectiveSize::fixed(2.5);
   const EnrichedState s = crackedPoint(model, size);
   timeCrackedUpdate(st, model, s, -kStep);
@@ -106,11 +106,11 @@ BENCHMARK(BM_EnrichedCrackedUnloading)->Arg(1)->Arg(0)->ArgName("tangent");
 void BM_EnrichedCrackedSofteningOptionOn(benchmark::State& st) {
   EnrichedParams p = concrete();
   p.secondBand = SecondBandOption::Orthogonal;
-  const EnrichedBand model(p);
+  const TwoPhasePoint model(p);
   const auto size = EffectiveSize::fixed(2.5);
   const EnrichedState s = crackedPoint(model, size);
   if (!s.band || s.secondBand) return st.SkipWithError("expected one band");
-  const UpdateOptions options{SnapBackPolicy::Report, st.range(0) != 0};
+  const UpdateOptions options{SnapBackPolicy::Stop, st.range(0) != 0};
   for (auto _ : st) {
     BandState band = *s.band;
     Voigt strain = s.strain;
@@ -122,7 +122,7 @@ void BM_EnrichedCrackedSofteningOptionOn(benchmark::State& st) {
 BENCHMARK(BM_EnrichedCrackedSofteningOptionOn)->Arg(1)->Arg(0)->ArgName("tangent");
 
 // A point with two softened bands: a nearly equibiaxial stretch (both damages above 0.3).
-EnrichedState twoBandPoint(const EnrichedBand& model, const EffectiveSize& size) {
+EnrichedState twoBandPoint(const TwoPhasePoint& model, const EffectiveSize& size) {
   EnrichedState s;
   for (int i = 0; i < 400 && !(s.secondBand && s.secondBand->damage() > 0.3); ++i)
     model.update(s, Voigt(2e-6, 2e-6, 1e-7), size);
@@ -134,12 +134,12 @@ EnrichedState twoBandPoint(const EnrichedBand& model, const EffectiveSize& size)
 void timeTwoBands(benchmark::State& st, double sign) {
   EnrichedParams p = concrete();
   p.secondBand = SecondBandOption::Orthogonal;
-  const EnrichedBand model(p);
+  const TwoPhasePoint model(p);
   const EnrichedState s = twoBandPoint(model, EffectiveSize::fixed(10.0));
   if (!s.secondBand) return st.SkipWithError("no second band");
   const auto dyad = [](const Vec2& n) { return Voigt(n[0] * n[0], n[1] * n[1], 2.0 * n[0] * n[1]); };
   const Voigt increment = sign * 2e-7 * (dyad(s.band->crackNormal) + dyad(s.secondBand->crackNormal));
-  const UpdateOptions options{SnapBackPolicy::Report, st.range(0) != 0};
+  const UpdateOptions options{SnapBackPolicy::Stop, st.range(0) != 0};
   int iterations = 0;
   for (auto _ : st) {
     BandState first = *s.band, second = *s.secondBand;

@@ -85,7 +85,7 @@ Scene stretchedBlock() {
   all.box = {Vec2(-1.0, -1.0), Vec2(1e3, 1e3)};
   Mat2 g;
   g << 1.0, 0.2, 0.0, -0.1;
-  all.field = AffineVelocity{400.0 * g, Vec2(37.0, 37.0), History::hold(1.0)};
+  all.field = AffineVelocity{400.0 * g, Vec2(37.0, 37.0), TimeFunction::hold(1.0)};
   s.conditions = {all};
   return s;
 }

@@ -49,7 +49,7 @@ StepOutcome solveIncrement(const PointUpdate& update, const Tangent& a, const Ma
     // The stress of the end strain cannot be closer than the round-off of that strain times
     // the stiffness, which a thin bulk makes huge (f near 1, docs/model.md).
     const Voigt endStrain = start.strain + d;
-    const double roundOff = EnrichedBand::kRoundOff * (out.result.tangent.cwiseAbs() * endStrain.cwiseAbs()).maxCoeff();
+    const double roundOff = TwoPhasePoint::kRoundOff * (out.result.tangent.cwiseAbs() * endStrain.cwiseAbs()).maxCoeff();
     if (out.controlResidual <= s.tolerance + roundOff) {
       out.dissipation = out.result.dissipation;
       return out;

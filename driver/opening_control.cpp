@@ -5,7 +5,7 @@
 
 namespace ecm::driver {
 
-OpeningOutcome openingControlStep(const EnrichedBand& model, MaterialPoint& point, const OpeningTarget& t,
+OpeningOutcome openingControlStep(const TwoPhasePoint& model, MaterialPoint& point, const OpeningTarget& t,
                                   double tolerance, int maxIterations) {
   const BandState& b = *point.band;
   const auto surface = model.bandLaw().loadingSurface(b.integrity);
@@ -47,7 +47,7 @@ OpeningOutcome openingControlStep(const EnrichedBand& model, MaterialPoint& poin
   // d r / d eps = N^T a/(1-f); d r / d[u] = -K                     (Eqs. (6), (9))
   // The bulk stress a (eps - f eps_L) / (1 - f) carries the round-off of a : eps amplified by
   // 1 / (1 - f) (Eq. (4)): the tolerance cannot be tighter than that.
-  const double tol = tolerance + EnrichedBand::kRoundOff * (a * point.strain).norm() / (1.0 - f);
+  const double tol = tolerance + TwoPhasePoint::kRoundOff * (a * point.strain).norm() / (1.0 - f);
   const Tangent dSdE = a / (1.0 - f);
   const JumpMap dSdJ = -f / ((1.0 - f) * h) * a * n;
   Trial tr = evaluate(u);

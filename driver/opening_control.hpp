@@ -20,7 +20,7 @@ struct OpeningOutcome {
 };
 
 // Requires point.band. Commits on success; on failure the point is unchanged.
-OpeningOutcome openingControlStep(const EnrichedBand& model, MaterialPoint& point, const OpeningTarget& target,
+OpeningOutcome openingControlStep(const TwoPhasePoint& model, MaterialPoint& point, const OpeningTarget& target,
                                   double tolerance, int maxIterations = 100);
 
 }  // namespace ecm::driver

@@ -89,7 +89,7 @@ class Runner {
   // the stress rises at the start, and a sample inside is above both ends.
   std::optional<BranchState> stressMaximum(OpeningTarget o, const MaterialPoint& from, double first, double to,
                                            double last, double maxLoadFactor) const {
-    const EnrichedBand* model = material_.enriched();
+    const TwoPhasePoint* model = material_.enriched();
     const double j0 = from.band->normalJump();
     if (!(to > j0)) return std::nullopt;
     BranchState best;
@@ -187,7 +187,7 @@ class Runner {
   // (jump) follows the branch until the controlled strain reaches the target again and lands.
   bool snapBack(int k, const MixedTarget& t) {
     SnapBackReport& r = run_.snapBack;
-    const EnrichedBand* model = material_.enriched();
+    const TwoPhasePoint* model = material_.enriched();
     if (!model) {
       run_.failure = "snap-back reported by a model without a band to trace it";
       return false;
@@ -245,7 +245,7 @@ class Runner {
             r.strain = point_.strain;
             r.stressBefore = principalStresses(stress_).first;
           }
-          if (scene_.onSnapBack == OnSnapBack::Stop) {
+          if (scene_.snapBack == SnapBackPolicy::Stop) {
             std::ostringstream msg;
             msg << "snap-back at increment " << increment_ + 1 << " (first principal stress "
                 << principalStresses(stress_).first
@@ -323,7 +323,7 @@ class Runner {
       r.strain = point_.strain;
       r.stressBefore = before;
     }
-    if (scene_.onSnapBack == OnSnapBack::Stop) {
+    if (scene_.snapBack == SnapBackPolicy::Stop) {
       if (!run_.history.empty()) run_.history.back().event |= kLastStableRow;
       std::ostringstream msg;
       msg << "snap-back at increment " << increment_ + 1 << " of a point with two bands (first principal stress "
@@ -385,7 +385,7 @@ class Runner {
   // find its maximum (golden section on the normal jump), the limit point, and step there. A
   // limit point at `from` itself marks the row already written there.
   bool limitPoint(int k, OpeningTarget o, const Saved& from, double past, double& lambda) {
-    const EnrichedBand* model = material_.enriched();
+    const TwoPhasePoint* model = material_.enriched();
     const double start = from.point.band->normalJump();
     const auto loadFactor = [&](double jump, OpeningOutcome* outcome, MaterialPoint* end) {
       MaterialPoint m = from.point;
@@ -412,7 +412,7 @@ class Runner {
   }
 
   bool openingSegment(int k, const Segment& seg) {
-    const EnrichedBand* model = material_.enriched();
+    const TwoPhasePoint* model = material_.enriched();
     OpeningTarget o;
     o.control = seg.control;
     o.stress = seg.target;
@@ -432,7 +432,7 @@ class Runner {
 
   // Elastic, so linear: find the exact onset along the segment's direction and stop there.
   bool stepToOnset(int k, const OpeningTarget& o) {
-    const EnrichedBand* model = material_.enriched();
+    const TwoPhasePoint* model = material_.enriched();
     MixedTarget t;
     t.control = o.control;
     t.strainIncrement = o.direction;
@@ -497,7 +497,7 @@ class Runner {
     r.iterations = out.iterations;
     r.substeps = out.substeps;
     r.openingControl = opening;
-    r.snapBackJump = jump;
+    r.snapBackRelease = jump;
     r.event = event;
     const Tangent& c = compliance_;
     if (point_.band) {

@@ -11,17 +11,14 @@
 
 namespace ecm::driver {
 
-enum class OnSnapBack {
-  Stop,  // report and stop the run
-  Jump,  // report, find the stable state at the same strain (opening control), and go on
-};
-
 struct PointScene {
   std::string name;
   MaterialParams material;
   double effectiveSize = 0.0;  // H (mm)
   std::vector<Segment> path;
-  OnSnapBack onSnapBack = OnSnapBack::Jump;
+  // At a snap-back of the point: Stop stops at the limit point; Release reports it, finds the
+  // stable state at the same strain (opening control) and goes on.
+  SnapBackPolicy snapBack = SnapBackPolicy::Release;
   double relativeTolerance = 1e-8;  // stress control residual <= this * f_t' (or * 1 MPa if elastic)
   int substepLevels = 10;           // a failing increment is retried in 2, 4, ... 2^levels pieces (0: never)
 };
@@ -43,7 +40,7 @@ struct HistoryRow {
   int iterations = 0;
   int substeps = 1;
   bool openingControl = false;
-  bool snapBackJump = false;  // this row is the stable state reached after a snap-back
+  bool snapBackRelease = false;  // this row is the stable state reached after a snap-back
   unsigned event = 0;         // RowEvent bits: a state inside an increment with a row of its own
   // The second band (second_band: orthogonal), once it has opened.
   bool secondBand = false;

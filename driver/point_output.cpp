@@ -19,7 +19,7 @@ void writeHistoryCsv(const PointRun& run, const std::filesystem::path& file, boo
   std::vector<std::string> columns{"increment", "segment", "eps_xx", "eps_yy", "gamma_xy", "sig_xx", "sig_yy", "sig_xy",
                                    "damage", "integrity", "jump_n", "jump_t", "opening", "traction_n", "normal_x", "normal_y",
                                    "volume_fraction", "work", "dissipation", "iterations", "substeps", "opening_control",
-                                   "snapback_jump", "event"};
+                                   "snapback_release", "event"};
   // With second_band: orthogonal, the second band (zeros until it opens).
   if (secondBandColumns)
     for (const char* c : {"damage_2", "jump_n_2", "jump_t_2", "normal_x_2", "normal_y_2"}) columns.emplace_back(c);
@@ -29,7 +29,7 @@ void writeHistoryCsv(const PointRun& run, const std::filesystem::path& file, boo
                             r.stress[1], r.stress[2], r.damage, r.integrity, r.normalJump, r.slidingJump, r.opening,
                             normalTraction(r), r.crackNormal[0], r.crackNormal[1], r.volumeFraction, r.work,
                             r.dissipation, double(r.iterations), double(r.substeps), r.openingControl ? 1.0 : 0.0,
-                            r.snapBackJump ? 1.0 : 0.0, double(r.event)};
+                            r.snapBackRelease ? 1.0 : 0.0, double(r.event)};
     if (secondBandColumns)
       row.insert(row.end(), {r.secondDamage, r.secondNormalJump, r.secondSlidingJump, r.secondNormal[0], r.secondNormal[1]});
     csv.row(row);

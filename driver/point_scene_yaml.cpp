@@ -78,7 +78,7 @@ PointScene readPointScene(const YamlMap& map) {
     if (const std::string problem = effectiveSizeProblem(s.effectiveSize, s.material.bandWidth,
                                                                 s.material.secondBand == SecondBandOption::Off ? 1 : 2); !problem.empty())
       map.fail("effective_size", problem);
-  s.onSnapBack = map.getEnumOr("on_snapback", {"jump", "stop"}, "jump") == "jump" ? OnSnapBack::Jump : OnSnapBack::Stop;
+  s.snapBack = io::readSnapBackPolicy(map);
   s.relativeTolerance = map.getOr<double>("tolerance", 1e-8, Range{0.0, 1e-3, false, true});
   s.substepLevels = map.getOr<int>("substep_levels", 10, Range::closed(0.0, 20.0));
   const YamlMap path = map.child("path");

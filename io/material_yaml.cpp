@@ -120,6 +120,12 @@ MaterialParams readMaterial(const YamlMap& map, const std::filesystem::path& dat
   return readInline(map, map.path().empty() ? "material" : map.path());
 }
 
+SnapBackPolicy readSnapBackPolicy(const YamlMap& map) {
+  map.reject("on_snapback", "renamed: write snap_back: release (was jump) or snap_back: stop");
+  return map.getEnumOr("snap_back", {"release", "stop"}, "release") == "stop" ? SnapBackPolicy::Stop
+                                                                            : SnapBackPolicy::Release;
+}
+
 MaterialParams loadMaterialFile(const std::filesystem::path& path) {
   const YamlMap m = loadYamlFile(path);
   m.reject("file", "a material file cannot refer to another material file");

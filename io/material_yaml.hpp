@@ -36,6 +36,10 @@ MaterialParams readMaterial(const YamlMap& map, const std::filesystem::path& dat
 // A standalone material file.
 MaterialParams loadMaterialFile(const std::filesystem::path& path);
 
+// `snap_back: release | stop` (default release) of a point or MPM scene. The old point-scene key
+// `on_snapback: jump | stop` is refused with a message naming the new key and value.
+SnapBackPolicy readSnapBackPolicy(const YamlMap& map);
+
 // The file format above, with units comments; numbers in shortest round-trip form.
 std::string materialYaml(const MaterialParams& p);
 // Validates, then writes atomically (OutputError naming the path on failure).

@@ -34,7 +34,7 @@ void MaterialParams::validate() const {
 }
 
 namespace {
-std::variant<LinearElastic, SmearedCrack, EnrichedBand> makeModel(const MaterialParams& p) {
+std::variant<LinearElastic, SmearedCrack, TwoPhasePoint> makeModel(const MaterialParams& p) {
   switch (p.model) {
     case ModelKind::LinearElastic: return LinearElastic(p.elastic);
     case ModelKind::SmearedCrack: {
@@ -43,7 +43,7 @@ std::variant<LinearElastic, SmearedCrack, EnrichedBand> makeModel(const Material
         b.softeningModulus = regularisedSofteningModulus(b.law(), p.fractureEnergy, p.regularisedForSize);
       return SmearedCrack(b);
     }
-    case ModelKind::Enriched: return EnrichedBand(p.enriched());
+    case ModelKind::Enriched: return TwoPhasePoint(p.enriched());
   }
   throw ParameterError("unknown model kind");
 }
@@ -74,7 +74,7 @@ UpdateResult Material::update(MaterialPoint& point, const Voigt& increment, cons
       p.integrity = s.integrity;
       return r;
     }
-    UpdateResult operator()(const EnrichedBand& m) const {
+    UpdateResult operator()(const TwoPhasePoint& m) const {
       if (!m.opensSecondBand())
         return p.band ? m.updateCracked(*p.band, p.strain, d, options) : m.updateIntact(p.strain, d, size, p.band, options);
       if (!p.band) return m.updateIntact(p.strain, d, size, p.band, p.secondBand, options);

@@ -5,7 +5,7 @@
 #include <string>
 #include <variant>
 
-#include "material/enriched_band.hpp"
+#include "material/two_phase_point.hpp"
 #include "material/linear_elastic.hpp"
 #include "material/parameter_check.hpp"
 #include "material/smeared_crack.hpp"
@@ -52,13 +52,13 @@ class Material {
   Voigt stress(const MaterialPoint& point) const;
   const MaterialParams& params() const { return params_; }
   const Tangent& stiffness() const { return stiffness_; }
-  const EnrichedBand* enriched() const { return std::get_if<EnrichedBand>(&model_); }
+  const TwoPhasePoint* enriched() const { return std::get_if<TwoPhasePoint>(&model_); }
   const SmearedCrack* smeared() const { return std::get_if<SmearedCrack>(&model_); }
 
  private:
   MaterialParams params_;
   Tangent stiffness_;
-  std::variant<LinearElastic, SmearedCrack, EnrichedBand> model_;
+  std::variant<LinearElastic, SmearedCrack, TwoPhasePoint> model_;
 };
 
 }  // namespace ecm

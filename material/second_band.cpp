@@ -1,7 +1,7 @@
 // The second band of an enriched point (docs/model.md, "A second band"). A cracked point opens
 // a band across its first band's tangent t1 once the bulk stress along t1 meets the onset
 // criterion. Then eps = f1 eps_L1 + f2 eps_L2 + (1 - f1 - f2) eps_b, and traction continuity,
-// Eq. (6), holds on both bands. The one-band update (enriched_band.cpp) is untouched: a point
+// Eq. (6), holds on both bands. The one-band update (two_phase_point.cpp) is untouched: a point
 // pays for this file only once it has two bands, or while the option looks for the trigger.
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "material/driving_force.hpp"
-#include "material/enriched_band.hpp"
+#include "material/two_phase_point.hpp"
 #include "material/parameter_check.hpp"
 
 namespace ecm {
@@ -31,11 +31,11 @@ Surface frozenAt(double x) { return {x, kInfinity}; }
 
 }  // namespace
 
-double EnrichedBand::tangentialStress(const BandState& first, const Voigt& stress) const {
+double TwoPhasePoint::tangentialStress(const BandState& first, const Voigt& stress) const {
   return normalProjector(first.slidingDirection()).dot(stress);
 }
 
-BandState EnrichedBand::openSecondBand(const BandState& first, const Voigt& strain, const EffectiveSize& size) const {
+BandState TwoPhasePoint::openSecondBand(const BandState& first, const Voigt& strain, const EffectiveSize& size) const {
   BandState b;
   b.crackNormal = canonicalNormal(first.slidingDirection() + Vec2::Zero());  // (+ 0: no -0 component)
   const double f1 = first.volumeFraction;
@@ -55,56 +55,56 @@ BandState EnrichedBand::openSecondBand(const BandState& first, const Voigt& stra
   return b;
 }
 
-TwoBandEquilibrium EnrichedBand::equilibrium(const BandState& first, const BandState& second,
+TwoBandEquilibrium TwoPhasePoint::equilibrium(const BandState& first, const BandState& second,
                                              const Surface (&surfaces)[2], const Voigt& strain, const Vec4& jumps,
                                              bool loadingTangent) const {
-  const JumpMap n[2] = {jumpToStrain(first.crackNormal), jumpToStrain(second.crackNormal)};
+  const JumpMap N[2] = {jumpToStrain(first.crackNormal), jumpToStrain(second.crackNormal)};
   const double f[2] = {first.volumeFraction, second.volumeFraction};
   const double bulk = 1.0 - f[0] - f[1];
   const Tangent& a = stiffness();
   TwoBandEquilibrium eq;
-  eq.bandStrain[0] = first.onsetStrain + n[0] * jumps.head<2>() / bandWidth_;   // Eq. (3)
-  eq.bandStrain[1] = second.onsetStrain + n[1] * jumps.tail<2>() / bandWidth_;
+  eq.bandStrain[0] = first.onsetStrain + N[0] * jumps.head<2>() / bandWidth_;   // Eq. (3)
+  eq.bandStrain[1] = second.onsetStrain + N[1] * jumps.tail<2>() / bandWidth_;
   eq.band[0] = law_.evaluate(surfaces[0], eq.bandStrain[0], loadingTangent);   // Eqs. (5), (11)-(13)
   eq.band[1] = law_.evaluate(surfaces[1], eq.bandStrain[1], loadingTangent);
   eq.stress = a * (strain - f[0] * eq.bandStrain[0] - f[1] * eq.bandStrain[1]) / bulk;  // Eqs. (2), (4)
   for (int i = 0; i < 2; ++i) {
-    eq.residual.segment<2>(2 * i) = n[i].transpose() * (eq.stress - eq.band[i].stress);  // Eq. (6)
+    eq.residual.segment<2>(2 * i) = N[i].transpose() * (eq.stress - eq.band[i].stress);  // Eq. (6)
     for (int j = 0; j < 2; ++j) {
-      Mat2 block = n[i].transpose() * (f[j] / bulk * a) * n[j];  // Eq. (9): the bulk couples the bands
-      if (i == j) block += n[i].transpose() * eq.band[i].tangent * n[i];
+      Mat2 block = N[i].transpose() * (f[j] / bulk * a) * N[j];  // Eq. (9): the bulk couples the bands
+      if (i == j) block += N[i].transpose() * eq.band[i].tangent * N[i];
       eq.jacobian.block<2, 2>(2 * i, 2 * j) = block / bandWidth_;
     }
   }
   return eq;
 }
 
-Tangent EnrichedBand::consistentTangent(const BandState& first, const BandState& second, const Mat4& jacobian) const {
-  const JumpMap n[2] = {jumpToStrain(first.crackNormal), jumpToStrain(second.crackNormal)};
+Tangent TwoPhasePoint::consistentTangent(const BandState& first, const BandState& second, const Mat4& jacobian) const {
+  const JumpMap N[2] = {jumpToStrain(first.crackNormal), jumpToStrain(second.crackNormal)};
   const double f[2] = {first.volumeFraction, second.volumeFraction};
   const double bulk = 1.0 - f[0] - f[1];
   const Tangent& a = stiffness();
   Eigen::Matrix<double, 4, 3> g;
-  for (int i = 0; i < 2; ++i) g.block<2, 3>(2 * i, 0) = n[i].transpose() * a / bulk;  // d residual / d eps, Eq. (8)
+  for (int i = 0; i < 2; ++i) g.block<2, 3>(2 * i, 0) = N[i].transpose() * a / bulk;  // d residual / d eps, Eq. (8)
   const Eigen::Matrix<double, 4, 3> dJumps = jacobian.partialPivLu().solve(g);
   Tangent s = Tangent::Identity();
-  for (int j = 0; j < 2; ++j) s -= f[j] / bandWidth_ * n[j] * dJumps.block<2, 3>(2 * j, 0);
+  for (int j = 0; j < 2; ++j) s -= f[j] / bandWidth_ * N[j] * dJumps.block<2, 3>(2 * j, 0);
   return a / bulk * s;  // Eq. (10)
 }
 
-Voigt EnrichedBand::stress(const BandState& first, const BandState& second, const Voigt& strain) const {
+Voigt TwoPhasePoint::stress(const BandState& first, const BandState& second, const Voigt& strain) const {
   const Surface frozen[2] = {frozenAt(first.integrity), frozenAt(second.integrity)};
   Vec4 jumps;
   jumps << first.jump, second.jump;
   return equilibrium(first, second, frozen, strain, jumps, false).stress;
 }
 
-double EnrichedBand::twoBandTolerance(const BandState& first, const BandState& second, const Voigt& eps) const {
+double TwoPhasePoint::twoBandTolerance(const BandState& first, const BandState& second, const Voigt& eps) const {
   const double f = first.volumeFraction + second.volumeFraction;
   return kRelativeTolerance * tensileStrength() + kRoundOff * (stiffness() * eps).norm() * std::max(1.0, f / (1.0 - f));
 }
 
-EnrichedBand::TwoBandSolve EnrichedBand::solveTwoBands(const BandState& first, const BandState& second,
+TwoPhasePoint::TwoBandSolve TwoPhasePoint::solveTwoBands(const BandState& first, const BandState& second,
                                                        const Surface (&surfaces)[2], const Voigt& eps, Vec4 jumps,
                                                        double tol) const {
   // Newton with line search on Eq. (6) for both bands; frozen bands make it linear in their jumps.
@@ -133,7 +133,7 @@ EnrichedBand::TwoBandSolve EnrichedBand::solveTwoBands(const BandState& first, c
   return s;
 }
 
-double EnrichedBand::twoBandMargin(const BandState& first, const BandState& second, const Mat4& jacobian,
+double TwoPhasePoint::twoBandMargin(const BandState& first, const BandState& second, const Mat4& jacobian,
                                    unsigned stressControlled) const {
   // K scaled by its intact secant value mu / ((1 - f1 - f2) h); under mixed control also the
   // stress-controlled block of D (Eq. (10)), scaled by E: both > 0 where the state is stable.
@@ -143,7 +143,7 @@ double EnrichedBand::twoBandMargin(const BandState& first, const BandState& seco
   return std::min(kMargin, stressControlledMargin(consistentTangent(first, second, jacobian), stressControlled));
 }
 
-UpdateResult EnrichedBand::updateTwoBands(BandState& first, BandState& second, Voigt& strain, const Voigt& increment,
+UpdateResult TwoPhasePoint::updateTwoBands(BandState& first, BandState& second, Voigt& strain, const Voigt& increment,
                                           UpdateOptions options) const {
   const Voigt eps = strain + increment;
   const double tol = twoBandTolerance(first, second, eps);
@@ -189,7 +189,7 @@ UpdateResult EnrichedBand::updateTwoBands(BandState& first, BandState& second, V
     }
   }
   // A set that never holds (a band loads frozen and heals loading) has no loading branch
-  // under strain control: for one band that is the snap-back of enriched_band.cpp.
+  // under strain control: for one band that is the snap-back of two_phase_point.cpp.
   if (!settled) return fail(UpdateStatus::SnapBack, sol.eq.residual.norm());
   if (loading[0] || loading[1]) {
     // Stable under the caller's control at the root, and along the path to it (docs/model.md,
@@ -231,7 +231,7 @@ UpdateResult EnrichedBand::updateTwoBands(BandState& first, BandState& second, V
   return res;
 }
 
-UpdateResult EnrichedBand::releaseTwoBands(BandState& first, BandState& second, Voigt& strain, const Voigt& increment,
+UpdateResult TwoPhasePoint::releaseTwoBands(BandState& first, BandState& second, Voigt& strain, const Voigt& increment,
                                            bool tangent) const {
   // As releaseSnapBack for one band: at the end strain, the damage of the band that loads most
   // (the larger Y / F(x0) at the predictor) is scanned down geometrically; the other band follows
@@ -319,7 +319,7 @@ UpdateResult EnrichedBand::releaseTwoBands(BandState& first, BandState& second, 
     trial[scanned].integrity = root.x;
     if (otherSurface.envelope) trial[other].integrity = std::min(trial[other].integrity, root.solve.eq.band[other].integrity);
     Voigt s = eps;
-    UpdateOptions polish(SnapBackPolicy::Report, tangent);
+    UpdateOptions polish(SnapBackPolicy::Stop, tangent);
     const UpdateResult r = updateTwoBands(trial[0], trial[1], s, Voigt::Zero(), polish);
     if (r.converged()) {
       res = r;
@@ -337,7 +337,7 @@ UpdateResult EnrichedBand::releaseTwoBands(BandState& first, BandState& second, 
   return res;
 }
 
-UpdateResult EnrichedBand::updateCracked(BandState& first, BandState* second, Voigt& strain, const Voigt& increment,
+UpdateResult TwoPhasePoint::updateCracked(BandState& first, BandState* second, Voigt& strain, const Voigt& increment,
                                          const EffectiveSize& size, std::optional<BandState>& secondOnset,
                                          UpdateOptions options) const {
   if (second) return updateTwoBands(first, *second, strain, increment, options);
@@ -404,7 +404,7 @@ UpdateResult EnrichedBand::updateCracked(BandState& first, BandState* second, Vo
   return rest;
 }
 
-UpdateResult EnrichedBand::updateIntact(Voigt& strain, const Voigt& increment, const EffectiveSize& size,
+UpdateResult TwoPhasePoint::updateIntact(Voigt& strain, const Voigt& increment, const EffectiveSize& size,
                                         std::optional<BandState>& onset, std::optional<BandState>& secondOnset,
                                         UpdateOptions options) const {
   const Voigt end = strain + increment;

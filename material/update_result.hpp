@@ -21,7 +21,7 @@ struct UpdateResult {
   UpdateStatus status = UpdateStatus::Converged;
   double residual = 0.0;  // final traction residual |(sigma - sigma_L) n| (MPa), 0 for closed-form models
   int iterations = 0;     // Newton iterations spent (0 for closed-form models)
-  bool released = false;  // converged by a snap-back release (EnrichedBand::releaseSnapBack)
+  bool released = false;  // converged by a snap-back release (TwoPhasePoint::releaseSnapBack)
   bool converged() const { return status == UpdateStatus::Converged; }
 };
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "mpm/geometry.hpp"
-#include "mpm/history.hpp"
+#include "mpm/time_function.hpp"
 
 namespace ecm::mpm {
 
@@ -21,7 +21,7 @@ enum class Prescribed {
 
 struct ComponentCondition {
   Prescribed kind = Prescribed::Free;
-  History history;  // unused for Free and Fixed
+  TimeFunction history;  // unused for Free and Fixed
 };
 
 // Velocity field v(x, t) = scale(t) * gradient * (x - origin) prescribed on both components
@@ -29,7 +29,7 @@ struct ComponentCondition {
 struct AffineVelocity {
   Mat2 gradient = Mat2::Zero();  // 1/s
   Vec2 origin = Vec2::Zero();    // mm
-  History scale = History::hold(1.0);
+  TimeFunction scale = TimeFunction::hold(1.0);
 };
 
 // Constraint of the grid nodes inside `box`. The reaction (the force the constraint exerts,
@@ -63,7 +63,7 @@ struct Load {
   Box box;
   LoadTarget target = LoadTarget::Particles;
   Vec2 force = Vec2::Zero();  // N (thickness included: the total on the set)
-  History history = History::hold(1.0);
+  TimeFunction history = TimeFunction::hold(1.0);
 };
 
 }  // namespace ecm::mpm

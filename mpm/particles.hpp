@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "material/enriched_band.hpp"
+#include "material/two_phase_point.hpp"
 #include "mpm/shape_function.hpp"
 
 namespace ecm::mpm {

@@ -17,7 +17,7 @@ const char* toString(UpdateScheme s) {
 namespace {
 [[noreturn]] void fail(const std::string& what) { throw std::invalid_argument(what); }
 
-void checkHistory(const History& h, const std::string& where) {
+void checkHistory(const TimeFunction& h, const std::string& where) {
   try {
     h.validate();
   } catch (const std::invalid_argument& e) {

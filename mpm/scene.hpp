@@ -37,7 +37,7 @@ struct SolverSettings {
   EffectiveSizeRule effectiveSize = EffectiveSizeRule::SquareRoot;  // enriched materials: SquareRoot or Oriented
   int substepLevels = 4;        // non-converged updates are retried with 2, 4, ... 2^levels sub-steps
   // Enriched points whose loading branch turns back (no stable root of Eq. (6) under the
-  // increment): Release lets the band fail onto its stable branch (counted, reported); Report
+  // increment): Release lets the band fail onto its stable branch (counted, reported); Stop
   // stops the run with the point's position and state.
   SnapBackPolicy snapBack = SnapBackPolicy::Release;
 };

@@ -50,19 +50,19 @@ std::vector<Vec2> pairs(const YamlMap& m, const std::string& key, std::size_t mi
   return out;
 }
 
-History readHistory(const YamlMap& m) {
+TimeFunction readTimeFunction(const YamlMap& m) {
   const std::string type = m.getEnum("type", {"hold", "linear_ramp", "smooth_ramp", "table"});
-  History h;
+  TimeFunction h;
   if (type == "table") {
     for (const Vec2& p : pairs(m, "points", 1)) {
       h.times.push_back(p[0]);
       h.values.push_back(p[1]);
     }
-    h.kind = HistoryKind::Table;
+    h.kind = TimeFunctionKind::Table;
   } else {
     h.value = m.get<double>("value");
     if (type != "hold") h.rampTime = m.get<double>("time", Range::positive());
-    h.kind = type == "hold" ? HistoryKind::Hold : (type == "linear_ramp" ? HistoryKind::LinearRamp : HistoryKind::SmoothRamp);
+    h.kind = type == "hold" ? TimeFunctionKind::Hold : (type == "linear_ramp" ? TimeFunctionKind::LinearRamp : TimeFunctionKind::SmoothRamp);
   }
   try {
     h.validate();
@@ -114,8 +114,7 @@ SolverSettings readSolver(const YamlMap& m, const std::string& preset) {
   s.damping.viscous = m.getOr<double>("viscous_damping", 0.0, Range::nonNegative());
   if (m.has("gravity")) s.gravity = vec2(m, "gravity");
   s.substepLevels = m.getOr<int>("substep_levels", 4, Range::closed(0.0, 12.0));
-  s.snapBack = m.getEnumOr("snap_back", {"release", "stop"}, "release") == "stop" ? SnapBackPolicy::Report
-                                                                                 : SnapBackPolicy::Release;
+  s.snapBack = io::readSnapBackPolicy(m);
   return s;
 }
 
@@ -181,7 +180,7 @@ NodeCondition readCondition(const YamlMap& m, const Grid& grid) {
   const double tol = 1e-9 * std::min(grid.cellSize[0], grid.cellSize[1]);
   for (int n = 0; n < grid.nodeCount() && !any; ++n) any = c.box.contains(grid.nodePosition(n), tol);
   if (!any) m.fail("box", "contains no grid node");
-  auto set = [&](int d, Prescribed kind, const History& h, const std::string& key) {
+  auto set = [&](int d, Prescribed kind, const TimeFunction& h, const std::string& key) {
     auto& k = c.component[static_cast<std::size_t>(d)];
     if (k.kind != Prescribed::Free) m.fail(key, std::string("component ") + (d ? "y" : "x") + " is prescribed twice");
     k = {kind, h};
@@ -199,7 +198,7 @@ NodeCondition readCondition(const YamlMap& m, const Grid& grid) {
     for (int d = 0; d < 2; ++d) {
       const std::string comp = d ? "y" : "x";
       if (!v.has(comp)) continue;
-      set(d, kind, readHistory(v.child(comp)), key);
+      set(d, kind, readTimeFunction(v.child(comp)), key);
       some = true;
     }
     if (!some) {
@@ -216,7 +215,7 @@ NodeCondition readCondition(const YamlMap& m, const Grid& grid) {
     AffineVelocity a;
     a.gradient << rows[0][0], rows[0][1], rows[1][0], rows[1][1];
     if (f.has("origin")) a.origin = vec2(f, "origin");
-    if (f.has("scale")) a.scale = readHistory(f.child("scale"));
+    if (f.has("scale")) a.scale = readTimeFunction(f.child("scale"));
     c.field = a;
   }
   if (!c.field && c.component[0].kind == Prescribed::Free && c.component[1].kind == Prescribed::Free)
@@ -230,7 +229,7 @@ Load readLoad(const YamlMap& m) {
   l.box = readBox(m.child("box"));
   l.target = m.getEnumOr("on", {"particles", "nodes"}, "particles") == "nodes" ? LoadTarget::Nodes : LoadTarget::Particles;
   l.force = vec2(m, "force");
-  if (m.has("history")) l.history = readHistory(m.child("history"));
+  if (m.has("history")) l.history = readTimeFunction(m.child("history"));
   return l;
 }
 

@@ -50,7 +50,7 @@ struct Energies {
 struct MaterialKernel {
   ModelKind kind = ModelKind::LinearElastic;
   Tangent stiffness = Tangent::Zero();
-  const EnrichedBand* enriched = nullptr;
+  const TwoPhasePoint* enriched = nullptr;
   const SmearedCrack* smeared = nullptr;
 };
 

@@ -30,7 +30,7 @@ struct Failure {
 
 // One update of an enriched point from its bands (nullptr: not opened yet); new bands go to
 // `onset` / `secondOnset`. Without the second-band option the point has at most one band.
-UpdateResult updateOnce(const EnrichedBand& m, Voigt& strain, BandState* band, BandState* second, const Voigt& d,
+UpdateResult updateOnce(const TwoPhasePoint& m, Voigt& strain, BandState* band, BandState* second, const Voigt& d,
                         const EffectiveSize& size, std::optional<BandState>& onset, std::optional<BandState>& secondOnset,
                         UpdateOptions options) {
   if (!m.opensSecondBand())
@@ -40,7 +40,7 @@ UpdateResult updateOnce(const EnrichedBand& m, Voigt& strain, BandState* band, B
 }
 
 // One enriched point: the increment in one go, else in 2^level equal sub-steps.
-UpdateResult updateEnriched(const EnrichedBand& m, Voigt& strain, BandState* band, BandState* second, const Voigt& d,
+UpdateResult updateEnriched(const TwoPhasePoint& m, Voigt& strain, BandState* band, BandState* second, const Voigt& d,
                             const EffectiveSize& size, Onset& opened, int levels, UpdateOptions options, long& retries) {
   UpdateResult r = updateOnce(m, strain, band, second, d, size, opened.first, opened.second, options);
   if (r.converged()) return r;
@@ -199,7 +199,7 @@ void Solver::updateStresses(bool deferredOnly) {
       msg << "material update " << toString(failure.result.status) << " after " << (1 << levels)
           << " sub-steps, residual " << failure.result.residual << " MPa";
       if (!failure.what.empty()) msg << " (" << failure.what << ")";
-      // The full state, to reproduce the update outside the run (material/enriched_band.hpp).
+      // The full state, to reproduce the update outside the run (material/two_phase_point.hpp).
       msg.precision(17);
       const auto v = [&](const auto& x) {
         std::ostringstream o;

@@ -1,7 +1,7 @@
 #pragma once
 // The closed-form part of the stress phase, shared by the fused grid-to-particle transfer (USL)
 // and Solver::updateStresses: an elastic point, or an enriched point that stays intact far from
-// onset (EnrichedBand::surelyIntact). Anything else (a cracked point, a point near onset, a
+// onset (TwoPhasePoint::surelyIntact). Anything else (a cracked point, a point near onset, a
 // smeared crack, a non-finite stress) returns false, changes nothing, and takes the full update.
 #include <cstdint>
 

@@ -4,23 +4,23 @@
 #include <gtest/gtest.h>
 
 #include "calibration/fracture_energy.hpp"
+#include "../paper_constants.hpp"
 #include "driver/point_driver.hpp"
 
 namespace ecm {
 namespace {
 
 TEST(CalibratedMaterial, PointDriverDissipatesTheCalibratedFractureEnergy) {
-  // The paper's concrete: E = 32000, nu = 0.2, f_t' = 3.0 MPa, G_F = 0.11 N/mm, h = 0.05 mm, n = 0.128.
-  const DamageLawParams shape{32000.0, 3.0, 1.0, 0.128};
-  const auto solved = calibration::solveSofteningModulus(shape, 0.11, 0.05);
+  // The paper's concrete (tests/paper_constants.hpp), E_p solved for G_F = 0.11 N/mm.
+  const auto solved = calibration::solveSofteningModulus(test::concreteShape(), test::kGF, test::kBandWidth);
   for (double bigH : {2.5, 50.0, 1000.0}) {
     driver::PointScene s;
     s.material.model = ModelKind::Enriched;
-    s.material.elastic = {32000.0, 0.2, Hypothesis::PlaneStress};
-    s.material.tensileStrength = 3.0;
+    s.material.elastic = {test::kE, test::kNu, Hypothesis::PlaneStress};
+    s.material.tensileStrength = test::kFt;
     s.material.softeningModulus = solved.softeningModulus;
-    s.material.softeningExponent = 0.128;
-    s.material.bandWidth = 0.05;
+    s.material.softeningExponent = test::kN;
+    s.material.bandWidth = test::kBandWidth;
     s.effectiveSize = bigH;
     driver::PresetPath p;
     p.name = "uniaxial_tension";

@@ -9,7 +9,7 @@
 #include "calibration/calibration_error.hpp"
 #include "calibration/calibration_run.hpp"
 #include "material/smeared_crack.hpp"
-#include "paper_values.hpp"
+#include "../paper_constants.hpp"
 
 namespace ecm::calibration {
 namespace {
@@ -19,7 +19,7 @@ CalibrationInput concrete() {
   in.youngsModulus = test::kE;
   in.tensileStrength = test::kFt;
   in.fractureEnergy = test::kGF;
-  in.bandWidth = test::kH;
+  in.bandWidth = test::kBandWidth;
   in.softeningExponent = test::kN;
   return in;
 }

@@ -7,24 +7,24 @@
 #include <limits>
 
 #include "calibration/calibration_error.hpp"
-#include "paper_values.hpp"
+#include "../paper_constants.hpp"
 
 namespace ecm::calibration {
 namespace {
 
 TEST(FractureEnergy, PaperConcreteSolvesToEp818) {
-  const SofteningModulusSolution s = solveSofteningModulus(test::concreteShape(), test::kGF, test::kH);
+  const SofteningModulusSolution s = solveSofteningModulus(test::concreteShape(), test::kGF, test::kBandWidth);
   EXPECT_NEAR(s.softeningModulus, 8.18, 0.02);
   EXPECT_LE(std::abs(s.relativeError), 1e-8);
   EXPECT_LE(std::abs(s.fractureEnergy / test::kGF - 1.0), 1e-8);
   // The reported error is the real one: recompute forward.
   DamageLawParams law = test::concreteShape();
   law.softeningModulus = s.softeningModulus;
-  EXPECT_LE(std::abs(fractureEnergy(law, test::kH) / test::kGF - 1.0), 1e-8);
+  EXPECT_LE(std::abs(fractureEnergy(law, test::kBandWidth) / test::kGF - 1.0), 1e-8);
 }
 
 TEST(FractureEnergy, PaperConcreteForwardGives011) {
-  const double gf = fractureEnergy({test::kE, test::kFt, test::kEp, test::kN}, test::kH);
+  const double gf = fractureEnergy({test::kE, test::kFt, test::kEp, test::kN}, test::kBandWidth);
   EXPECT_NEAR(gf, 0.110, 0.001 * 0.110);
 }
 
@@ -69,14 +69,14 @@ TEST(FractureEnergy, RvePhasesOfTable1MatchAnIndependentIntegration) {
 
 TEST(FractureEnergy, IndependentIntegrationAlsoAgreesForTheConcrete) {
   const DamageLawParams law{test::kE, test::kFt, test::kEp, test::kN};
-  EXPECT_NEAR(fractureEnergy(law, test::kH), test::kH * bandWorkToFailure(law), 1e-10 * test::kGF);
+  EXPECT_NEAR(fractureEnergy(law, test::kBandWidth), test::kBandWidth * bandWorkToFailure(law), 1e-10 * test::kGF);
 }
 
 TEST(FractureEnergy, GFBelowTheElasticMinimumIsRefused) {
-  const double least = minimumFractureEnergy(test::kE, test::kFt, test::kH);
-  EXPECT_DOUBLE_EQ(least, test::kH * test::kFt * test::kFt / (2.0 * test::kE));
+  const double least = minimumFractureEnergy(test::kE, test::kFt, test::kBandWidth);
+  EXPECT_DOUBLE_EQ(least, test::kBandWidth * test::kFt * test::kFt / (2.0 * test::kE));
   try {
-    solveSofteningModulus(test::concreteShape(), 0.5 * least, test::kH);
+    solveSofteningModulus(test::concreteShape(), 0.5 * least, test::kBandWidth);
     FAIL() << "no error";
   } catch (const CalibrationError& e) {
     const std::string what = e.what();
@@ -85,18 +85,18 @@ TEST(FractureEnergy, GFBelowTheElasticMinimumIsRefused) {
     EXPECT_NE(what.find("3.515625e-06"), std::string::npos) << what; // the value
   }
   // Just above the minimum a (very stiff) E_p still exists.
-  const SofteningModulusSolution s = solveSofteningModulus(test::concreteShape(), 1.5 * least, test::kH);
+  const SofteningModulusSolution s = solveSofteningModulus(test::concreteShape(), 1.5 * least, test::kBandWidth);
   EXPECT_GT(s.softeningModulus, test::kE);
   EXPECT_LE(std::abs(s.relativeError), 1e-8);
 }
 
 TEST(FractureEnergy, OutOfRangeShapesAreRefused) {
-  EXPECT_THROW(solveSofteningModulus(test::concreteShape(0.5), test::kGF, test::kH), CalibrationError);
-  EXPECT_THROW(solveSofteningModulus(test::concreteShape(-0.1), test::kGF, test::kH), CalibrationError);
-  EXPECT_THROW(solveSofteningModulus(test::concreteShape(), -0.11, test::kH), CalibrationError);
-  EXPECT_THROW(solveSofteningModulus(test::concreteShape(), std::numeric_limits<double>::quiet_NaN(), test::kH),
+  EXPECT_THROW(solveSofteningModulus(test::concreteShape(0.5), test::kGF, test::kBandWidth), CalibrationError);
+  EXPECT_THROW(solveSofteningModulus(test::concreteShape(-0.1), test::kGF, test::kBandWidth), CalibrationError);
+  EXPECT_THROW(solveSofteningModulus(test::concreteShape(), -0.11, test::kBandWidth), CalibrationError);
+  EXPECT_THROW(solveSofteningModulus(test::concreteShape(), std::numeric_limits<double>::quiet_NaN(), test::kBandWidth),
                CalibrationError);
-  EXPECT_THROW(solveSofteningModulus({-1.0, test::kFt, 0.0, test::kN}, test::kGF, test::kH), CalibrationError);
+  EXPECT_THROW(solveSofteningModulus({-1.0, test::kFt, 0.0, test::kN}, test::kGF, test::kBandWidth), CalibrationError);
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "calibration/fracture_energy.hpp"
-#include "paper_values.hpp"
+#include "../paper_constants.hpp"
 
 namespace ecm::calibration {
 namespace {
@@ -14,12 +14,12 @@ namespace {
 const DamageLawParams kLaw{test::kE, test::kFt, test::kEp, test::kN};
 
 TEST(SofteningCurve, PointFollowsTheDefinitions) {
-  const SofteningCurve c(kLaw, test::kH);
+  const SofteningCurve c(kLaw, test::kBandWidth);
   const double x = 0.01;
   const SofteningPoint p = c.at(x);
   EXPECT_DOUBLE_EQ(p.stress, uniaxialStress(kLaw, x));
   EXPECT_DOUBLE_EQ(p.bandStrain, p.stress / (x * test::kE));
-  EXPECT_DOUBLE_EQ(p.opening, test::kH * (p.bandStrain - p.stress / test::kE));
+  EXPECT_DOUBLE_EQ(p.opening, test::kBandWidth * (p.bandStrain - p.stress / test::kE));
   EXPECT_DOUBLE_EQ(p.damage, 0.99);
   const SofteningPoint peak = c.at(1.0);
   EXPECT_DOUBLE_EQ(peak.stress, test::kFt);
@@ -28,7 +28,7 @@ TEST(SofteningCurve, PointFollowsTheDefinitions) {
 }
 
 TEST(SofteningCurve, StressFallsAndOpeningGrowsMonotonically) {
-  const SofteningCurve c(kLaw, test::kH);
+  const SofteningCurve c(kLaw, test::kBandWidth);
   SofteningPoint prev = c.at(1.0);
   for (int i = 1; i <= 3000; ++i) {
     const SofteningPoint p = c.at(std::pow(10.0, -15.0 * i / 3000.0));
@@ -39,7 +39,7 @@ TEST(SofteningCurve, StressFallsAndOpeningGrowsMonotonically) {
 }
 
 TEST(SofteningCurve, InversionsAreExact) {
-  const SofteningCurve c(kLaw, test::kH);
+  const SofteningCurve c(kLaw, test::kBandWidth);
   for (double w : {1e-5, 1e-3, 0.02, 0.1, 0.5}) {
     EXPECT_NEAR(c.atOpening(w).opening, w, 1e-11 * w);
   }
@@ -55,12 +55,12 @@ TEST(SofteningCurve, InversionsAreExact) {
 TEST(SofteningCurve, AreaUnderTheCurveIsTheFractureEnergy) {
   // int_0^inf sigma dw = G_F (the definition of the opening); trapezoids on a fine grid plus the
   // tail beyond w_max, where sigma ~ w^(-(1-n)/n) decays fast.
-  const SofteningCurve c(kLaw, test::kH);
+  const SofteningCurve c(kLaw, test::kBandWidth);
   const std::vector<SofteningPoint> pts = c.sample(3.0, 60001);
   double area = 0.0;
   for (std::size_t i = 1; i < pts.size(); ++i)
     area += 0.5 * (pts[i].stress + pts[i - 1].stress) * (pts[i].opening - pts[i - 1].opening);
-  EXPECT_NEAR(area, fractureEnergy(kLaw, test::kH), 2e-4 * test::kGF);
+  EXPECT_NEAR(area, fractureEnergy(kLaw, test::kBandWidth), 2e-4 * test::kGF);
 }
 
 }  // namespace

@@ -10,7 +10,7 @@
 #include "calibration/fracture_energy.hpp"
 #include "calibration/softening_curve.hpp"
 #include "io/yaml_input.hpp"
-#include "paper_values.hpp"
+#include "../paper_constants.hpp"
 
 namespace ecm::calibration {
 namespace {
@@ -33,7 +33,7 @@ TEST(Hordijk, CurveHasItsKnownShape) {
 
 TEST(SofteningFit, HordijkFitKeepsGFExactlyWithASmallResidual) {
   const TargetCurve target = hordijkCurve(test::kFt, test::kGF);
-  const FitResult f = fitSoftening(test::concreteShape(), test::kGF, test::kH, target);
+  const FitResult f = fitSoftening(test::concreteShape(), test::kGF, test::kBandWidth, target);
   EXPECT_LE(std::abs(f.relativeError), 1e-8);
   EXPECT_FALSE(f.atBound);
   EXPECT_GT(f.softeningExponent, 0.0);
@@ -42,30 +42,30 @@ TEST(SofteningFit, HordijkFitKeepsGFExactlyWithASmallResidual) {
   // The fitted law does dissipate G_F.
   DamageLawParams law = test::concreteShape(f.softeningExponent);
   law.softeningModulus = f.softeningModulus;
-  EXPECT_LE(std::abs(fractureEnergy(law, test::kH) / test::kGF - 1.0), 1e-8);
-  EXPECT_DOUBLE_EQ(fitResidual(law, test::kH, target), f.residual);
+  EXPECT_LE(std::abs(fractureEnergy(law, test::kBandWidth) / test::kGF - 1.0), 1e-8);
+  EXPECT_DOUBLE_EQ(fitResidual(law, test::kBandWidth, target), f.residual);
   // A minimum: both neighbours in n (each with its own E_p from G_F) fit worse, and so does the
   // paper's n = 0.128.
   for (double dn : {-0.01, 0.01}) {
     DamageLawParams other = test::concreteShape(f.softeningExponent + dn);
-    other.softeningModulus = solveSofteningModulus(other, test::kGF, test::kH).softeningModulus;
-    EXPECT_GT(fitResidual(other, test::kH, target), f.residual) << dn;
+    other.softeningModulus = solveSofteningModulus(other, test::kGF, test::kBandWidth).softeningModulus;
+    EXPECT_GT(fitResidual(other, test::kBandWidth, target), f.residual) << dn;
   }
-  EXPECT_GT(fitResidual({test::kE, test::kFt, test::kEp, test::kN}, test::kH, target), f.residual);
+  EXPECT_GT(fitResidual({test::kE, test::kFt, test::kEp, test::kN}, test::kBandWidth, target), f.residual);
 }
 
 TEST(SofteningFit, RecoversTheLawThatMadeTheTarget) {
   // Points sampled from a law of the model's own form: the fit finds its n and E_p again.
   DamageLawParams law = test::concreteShape(0.2);
-  law.softeningModulus = solveSofteningModulus(law, test::kGF, test::kH).softeningModulus;
-  const SofteningCurve curve(law, test::kH);
+  law.softeningModulus = solveSofteningModulus(law, test::kGF, test::kBandWidth).softeningModulus;
+  const SofteningCurve curve(law, test::kBandWidth);
   TargetCurve target;
   target.source = "synthetic";
   for (int i = 1; i <= 40; ++i) {
     target.opening.push_back(0.005 * i);
     target.stress.push_back(curve.atOpening(0.005 * i).stress);
   }
-  const FitResult f = fitSoftening(test::concreteShape(), test::kGF, test::kH, target);
+  const FitResult f = fitSoftening(test::concreteShape(), test::kGF, test::kBandWidth, target);
   EXPECT_NEAR(f.softeningExponent, 0.2, 1e-5);
   EXPECT_NEAR(f.softeningModulus, law.softeningModulus, 1e-4 * law.softeningModulus);
   EXPECT_LT(f.residual, 1e-6);
@@ -73,9 +73,9 @@ TEST(SofteningFit, RecoversTheLawThatMadeTheTarget) {
 
 TEST(SofteningFit, TargetsNeedThreeIncreasingPoints) {
   TargetCurve t{"code", {0.01, 0.02}, {2.0, 1.0}};
-  EXPECT_THROW(fitSoftening(test::concreteShape(), test::kGF, test::kH, t), CalibrationError);
+  EXPECT_THROW(fitSoftening(test::concreteShape(), test::kGF, test::kBandWidth, t), CalibrationError);
   t = {"code", {0.01, 0.03, 0.02}, {2.0, 1.0, 0.5}};
-  EXPECT_THROW(fitSoftening(test::concreteShape(), test::kGF, test::kH, t), CalibrationError);
+  EXPECT_THROW(fitSoftening(test::concreteShape(), test::kGF, test::kBandWidth, t), CalibrationError);
 }
 
 std::filesystem::path writeCsv(const std::string& name, const std::string& text) {

@@ -4,10 +4,12 @@
 
 #include <gtest/gtest.h>
 
+#include "../paper_constants.hpp"
+
 namespace ecm::driver {
 namespace {
 
-const ElasticParams kElastic{32000.0, 0.2, Hypothesis::PlaneStress};
+const ElasticParams kElastic{test::kE, test::kNu, Hypothesis::PlaneStress};
 
 // An elastic update that reports NotConverged for any increment larger than `limit` (norm),
 // standing in for a return that only converges in small steps.

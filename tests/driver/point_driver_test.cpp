@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "material/paper_concrete.hpp"
+#include "../paper_constants.hpp"
 #include "material/uniaxial_closed_form.hpp"
 
 namespace ecm::driver {
@@ -21,7 +21,7 @@ MaterialParams concrete(ModelKind kind, double nu = test::kNu) {
   p.tensileStrength = test::kFt;
   p.softeningModulus = test::kEp;
   p.softeningExponent = test::kN;
-  p.bandWidth = test::kH;
+  p.bandWidth = test::kBandWidth;
   p.fractureEnergy = test::kGF;
   return p;
 }
@@ -83,7 +83,7 @@ TEST(PointDriver, EnrichedUniaxialRunMatchesTheClosedForm) {
   // The closed-form curve, parameterised by the band integrity x (monotonic in strain here).
   std::vector<std::pair<double, double>> curve;
   for (double lx = 0.0; lx > -12.0; lx -= 0.002) {
-    const auto band = uniaxialBandResponse(kLaw, test::kNu, test::kH, std::pow(10.0, lx));
+    const auto band = uniaxialBandResponse(kLaw, test::kNu, test::kBandWidth, std::pow(10.0, lx));
     curve.emplace_back(uniaxialMacroStrain(band, test::kE, bigH), band.stress);
   }
   double worst = 0.0;
@@ -110,7 +110,7 @@ TEST(PointDriver, EnrichedPointDissipatesTheFractureEnergyUnderOpeningControl) {
     PointRun run = runPoint(s);
     ASSERT_TRUE(run.completed) << run.failure;
     const PointSummary sum = summarise(s, run);
-    const double gf = test::kH * dissipationToFailure(kLaw);
+    const double gf = test::kBandWidth * dissipationToFailure(kLaw);
     EXPECT_NEAR(sum.energyPerArea, gf, 0.01 * gf) << "H = " << bigH;
     // The band law's peak in uniaxial stress (nu = 0.2): f_t' at onset, then the frozen
     // tangential strain lifts the traction, never above f_t' / sqrt(1 - nu^2) (docs/model.md).
@@ -146,7 +146,7 @@ TEST(PointDriver, SnapBackIsDetectedUnderStrainControlAndTracedUnderOpeningContr
       const double x = r.integrity;
       const double sigma = uniaxialStress(kLaw, x);
       EXPECT_NEAR(r.stress[0], sigma, 1e-8 * test::kFt);
-      EXPECT_NEAR(r.opening, test::kH * (sigma / (x * test::kE) - sigma / test::kE), 1e-9);
+      EXPECT_NEAR(r.opening, test::kBandWidth * (sigma / (x * test::kE) - sigma / test::kE), 1e-9);
       EXPECT_NEAR(r.strain[0], sigma / test::kE + r.opening / bigH, 1e-12);
     }
   }
@@ -199,7 +199,7 @@ TEST(PointDriver, TheSecondBandSoftensTheLockedStressAndDissipatesAnotherGF) {
   EXPECT_NEAR(last.secondNormal[1], 1.0, 1e-12);
   EXPECT_GT(last.secondDamage, 1.0 - 1e-9);
   EXPECT_LT(std::abs(last.stress[1]), 1e-6 * test::kFt) << "no locked stress left";
-  const double gf = test::kH * dissipationToFailure(kLaw);
+  const double gf = test::kBandWidth * dissipationToFailure(kLaw);
   EXPECT_NEAR(summarise(s, run).energyPerArea, 2.0 * gf, 1e-3 * gf);
   EXPECT_FALSE(run.snapBack.detected);
 }
@@ -215,7 +215,7 @@ TEST(PointDriver, ASnapBackWithTwoBandsIsReleasedAtTheIncrementsStrain) {
   int released = 0;
   for (std::size_t i = 1; i < run.history.size(); ++i) {
     const HistoryRow& r = run.history[i];
-    if (r.segment != 2 || !r.snapBackJump) continue;
+    if (r.segment != 2 || !r.snapBackRelease) continue;
     ++released;
     EXPECT_TRUE(run.history[i - 1].event & kLastStableRow);
     EXPECT_LT(r.stress[1], run.history[i - 1].stress[1]) << "the release drops the stress";
@@ -223,7 +223,7 @@ TEST(PointDriver, ASnapBackWithTwoBandsIsReleasedAtTheIncrementsStrain) {
   }
   EXPECT_EQ(released, 1);
   EXPECT_TRUE(run.history.back().secondBand);
-  const double gf = test::kH * dissipationToFailure(kLaw);
+  const double gf = test::kBandWidth * dissipationToFailure(kLaw);
   EXPECT_NEAR(summarise(s, run).energyPerArea, 2.0 * gf, 1e-3 * gf);
 }
 

@@ -59,6 +59,16 @@ TEST(PointSceneYaml, RejectsZeroIncrements) {
   expectRejected("effective_size: 10\npath: {preset: uniaxial_tension, strain: 1e-4, increments: 0}\n", 12, "increments");
 }
 
+TEST(PointSceneYaml, SnapBackKeyIsSharedWithMpmScenesAndTheOldKeyNamesTheNewOne) {
+  const std::string path = "path: {preset: uniaxial_tension, strain: 1e-4, increments: 5}\n";
+  EXPECT_EQ(readPointScene(io::parseYaml(kMaterial + "effective_size: 10\nsnap_back: stop\n" + path, "s.yaml")).snapBack,
+            SnapBackPolicy::Stop);
+  EXPECT_EQ(readPointScene(io::parseYaml(kMaterial + "effective_size: 10\n" + path, "s.yaml")).snapBack,
+            SnapBackPolicy::Release);
+  expectRejected("effective_size: 10\non_snapback: jump\n" + path, 12, "snap_back: release (was jump)");
+  expectRejected("effective_size: 10\nsnap_back: jump\n" + path, 12, "release");
+}
+
 TEST(PointSceneYaml, RejectsAnEffectiveSizeBelowTheSmallestOneAndGivesTheBound) {
   // The bound is h (1 + 1e-6) = 0.05000005 mm for h = 0.05 mm (docs/model.md).
   expectRejected("effective_size: 0.05\npath: {preset: uniaxial_tension, strain: 1e-4, increments: 5}\n", 11,

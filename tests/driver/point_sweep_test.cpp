@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "driver/point_driver.hpp"
-#include "material/paper_concrete.hpp"
+#include "../paper_constants.hpp"
 #include "material/uniaxial_closed_form.hpp"
 
 namespace ecm::driver {
@@ -29,7 +29,7 @@ PointScene sweepScene(const Case& c) {
   s.material.tensileStrength = test::kFt;
   s.material.softeningModulus = test::kEp;
   s.material.softeningExponent = test::kN;
-  s.material.bandWidth = test::kH;
+  s.material.bandWidth = test::kBandWidth;
   s.effectiveSize = c.size;
   PresetPath p;
   p.name = c.path;
@@ -45,16 +45,16 @@ double closedFormSnapBackSize(const std::string& path, double nu) {
   const DamageLawParams law{test::kE, test::kFt, test::kEp, test::kN};
   if (path == "uniaxial_strain") {
     const double a11 = test::kE / (1.0 - nu * nu);  // plane stress
-    return snapBackEffectiveSize([&](double x) { return uniaxialStrainBandResponse(law, a11, test::kH, x); }, a11);
+    return snapBackEffectiveSize([&](double x) { return uniaxialStrainBandResponse(law, a11, test::kBandWidth, x); }, a11);
   }
-  return snapBackEffectiveSize([&](double x) { return uniaxialBandResponse(law, nu, test::kH, x); }, test::kE);
+  return snapBackEffectiveSize([&](double x) { return uniaxialBandResponse(law, nu, test::kBandWidth, x); }, test::kE);
 }
 
 // The largest stress of the band's curve in uniaxial tension (closed form, scanned in log x and
 // refined by golden section): f_t' for nu = 0, 3.0570 MPa for nu = 0.2.
 double tensionPeak(double nu) {
   const DamageLawParams law{test::kE, test::kFt, test::kEp, test::kN};
-  const auto stress = [&](double lx) { return uniaxialBandResponse(law, nu, test::kH, std::pow(10.0, lx)).stress; };
+  const auto stress = [&](double lx) { return uniaxialBandResponse(law, nu, test::kBandWidth, std::pow(10.0, lx)).stress; };
   double best = stress(0.0), at = 0.0;
   for (double lx = -1e-3; lx > -14.0; lx -= 1e-3)
     if (stress(lx) > best) best = stress(lx), at = lx;
@@ -71,8 +71,8 @@ double tensionPeak(double nu) {
 TEST(PointSweep, ClosedFormSnapBackSizes) {
   // nu = 0: the 1D law, h (E + E_p) / E_p = 195.56 mm (its steepest point is the onset).
   // The scan starts a hair inside the curve (x = 1 - 2e-5), so it sees a slope 1e-6 flatter.
-  EXPECT_NEAR(closedFormSnapBackSize("uniaxial_tension", 0.0), test::kH * (test::kE + test::kEp) / test::kEp, 1e-3);
-  EXPECT_NEAR(closedFormSnapBackSize("uniaxial_strain", 0.0), test::kH * (test::kE + test::kEp) / test::kEp, 1e-3);
+  EXPECT_NEAR(closedFormSnapBackSize("uniaxial_tension", 0.0), test::kBandWidth * (test::kE + test::kEp) / test::kEp, 1e-3);
+  EXPECT_NEAR(closedFormSnapBackSize("uniaxial_strain", 0.0), test::kBandWidth * (test::kE + test::kEp) / test::kEp, 1e-3);
   // nu = 0.2 in tension: 323.65 mm (README; a scan in steps of 0.1 % in log x gives 323.6495).
   EXPECT_NEAR(closedFormSnapBackSize("uniaxial_tension", 0.2), 323.6495, 1e-3);
   // The traction's maximum: f_t' at onset for nu = 0; 3.0570 MPa for nu = 0.2 (README), below
@@ -93,8 +93,8 @@ constexpr int kMostIncrements = 20000;
 // One path of the sweep, both Poisson's ratios.
 void sweep(const std::string& path) {
   const DamageLawParams law{test::kE, test::kFt, test::kEp, test::kN};
-  const double fractureEnergy = test::kH * dissipationToFailure(law);  // G_F of the law itself
-  const std::vector<double> sizes = {minimumEffectiveSize(test::kH), 1.0, 10.0, 195.0, 197.0,
+  const double fractureEnergy = test::kBandWidth * dissipationToFailure(law);  // G_F of the law itself
+  const std::vector<double> sizes = {minimumEffectiveSize(test::kBandWidth), 1.0, 10.0, 195.0, 197.0,
                                      323.0, 325.0, 1e3, 1e4, 1e6};
   std::ostringstream table;
   table << "path nu H increments | peak onset snapback drop H*diss/G_F\n";
@@ -122,8 +122,8 @@ void sweep(const std::string& path) {
         const double peakExpected = path == "uniaxial_strain" ? onsetExpected : tensionPeak(nu);
         EXPECT_NEAR(s.peakStress, peakExpected, 1e-6 * test::kFt) << where.str();
         // To the traction tolerance of the material, 1e-10 f_t' + 1e-13 |a eps| f / (1 - f)
-        // near f = 1 (enriched_band.cpp): 3e-7 MPa at the smallest H.
-        const double f = test::kH / size;
+        // near f = 1 (two_phase_point.cpp): 3e-7 MPa at the smallest H.
+        const double f = test::kBandWidth / size;
         EXPECT_NEAR(s.onsetStress, onsetExpected, 1e-9 * onsetExpected + 2e-13 * onsetExpected / (1.0 - f)) << where.str();
         // Snap-back exactly where the closed form's macro curve turns back (the tension
         // segment decides for tension_then_shear: H <= 10 mm never fails in tension).
@@ -159,7 +159,7 @@ TEST(PointSweep, AtTheSmallestEffectiveSizeThePointIsThePureBandAsTheSmearedCrac
   // band's; with nu = 0 the band is the 1D law, which is the smeared crack with the band's own
   // E_p (the same law on the whole strain). Both to eps = 2e-3 (band opening 1e-4 mm, on the
   // softening branch near 0.9 f_t', MODEL identities) in 400 increments.
-  const Case c{"uniaxial_tension", 0.0, minimumEffectiveSize(test::kH), 400};
+  const Case c{"uniaxial_tension", 0.0, minimumEffectiveSize(test::kBandWidth), 400};
   PointScene enriched = sweepScene(c);
   for (Segment& s : enriched.path) s.target[0] = 2e-3;
   PointScene smeared = enriched;
@@ -185,7 +185,7 @@ TEST(PointSweep, AtTheSmallestEffectiveSizeThePointIsThePureBandAsTheSmearedCrac
 
 TEST(PointSweep, AnEffectiveSizeBelowTheBoundIsRefusedBeforeRunning) {
   // H = h (1 + 1e-9): the bound is h (1 + 1e-6) (docs/model.md).
-  const Case c{"uniaxial_tension", 0.2, test::kH * (1.0 + 1e-9), 10};
+  const Case c{"uniaxial_tension", 0.2, test::kBandWidth * (1.0 + 1e-9), 10};
   try {
     runPoint(sweepScene(c));
     FAIL() << "expected a refusal";

@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "io/temp_dir.hpp"
-#include "material/paper_concrete.hpp"
+#include "../paper_constants.hpp"
 
 namespace ecm::driver {
 namespace {
@@ -20,7 +20,7 @@ TEST(SnapBackStudy, EnrichedCurveIsOneForAllSizesAndTheSmearedCrackIsRefusedBeyo
   s.material.tensileStrength = test::kFt;
   s.material.softeningModulus = test::kEp;
   s.material.softeningExponent = test::kN;
-  s.material.bandWidth = test::kH;
+  s.material.bandWidth = test::kBandWidth;
   s.material.fractureEnergy = test::kGF;
   s.effectiveSizes = {1.0, 100.0, 500.0, 1000.0};
   s.strainIncrements = 200;
@@ -36,7 +36,7 @@ TEST(SnapBackStudy, EnrichedCurveIsOneForAllSizesAndTheSmearedCrackIsRefusedBeyo
   // steeper: its snap-back size lies between 100 and 500 mm.
   EXPECT_GT(r.snapBackSize, 100.0);
   EXPECT_LT(r.snapBackSize, 500.0);
-  const double gfBand = test::kH * dissipationToFailure({test::kE, test::kFt, test::kEp, test::kN});
+  const double gfBand = test::kBandWidth * dissipationToFailure({test::kE, test::kFt, test::kEp, test::kN});
   for (const StudyRow& row : r.rows) {
     SCOPED_TRACE("H = " + std::to_string(row.effectiveSize));
     EXPECT_LE(row.tractionOpeningError, 0.005);            // one traction-opening curve: <= 0.5% f_t'

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "paper_concrete.hpp"
+#include "../paper_constants.hpp"
 #include "uniaxial.hpp"
 
 namespace ecm {
@@ -68,8 +68,8 @@ TEST(BandDamageLaw, WorkToCompleteFailureTimesBandWidthIsTheFractureEnergy) {
   }
   EXPECT_LT(stress, 1e-3 * test::kFt);
   const double stored = 0.5 * stress * d.strain[0];
-  EXPECT_NEAR(test::kH * (work - stored), 0.110, 0.005 * 0.110);
-  EXPECT_NEAR(test::kH * d.dissipated, 0.110, 0.005 * 0.110);
+  EXPECT_NEAR(test::kBandWidth * (work - stored), 0.110, 0.005 * 0.110);
+  EXPECT_NEAR(test::kBandWidth * d.dissipated, 0.110, 0.005 * 0.110);
 }
 
 TEST(BandDamageLaw, CompressionCausesNoDamage) {

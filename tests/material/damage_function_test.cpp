@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "paper_concrete.hpp"
+#include "../paper_constants.hpp"
 
 namespace ecm {
 namespace {
@@ -56,7 +56,7 @@ TEST(DamageFunction, IntegritySolveIsIrreversibleAndBounded) {
 
 TEST(DamageFunction, PaperConcreteDissipatesTheFractureEnergy) {
   // Seed README erratum: h int_0^1 F dD = 0.1100 N/mm for the paper's concrete.
-  EXPECT_NEAR(test::kH * dissipationToFailure(kLaw), 0.110, 0.0005 * 0.110);
+  EXPECT_NEAR(test::kBandWidth * dissipationToFailure(kLaw), 0.110, 0.0005 * 0.110);
 }
 
 TEST(DamageFunction, IncrementalDissipationAddsUpToTheTotal) {

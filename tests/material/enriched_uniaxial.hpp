@@ -3,14 +3,14 @@
 #include <cmath>
 #include <vector>
 
-#include "material/enriched_band.hpp"
-#include "paper_concrete.hpp"
+#include "material/two_phase_point.hpp"
+#include "../paper_constants.hpp"
 #include "uniaxial.hpp"
 
 namespace ecm::test {
 
 struct EnrichedRun {
-  EnrichedBand model;
+  TwoPhasePoint model;
   EnrichedState state;
   EffectiveSize size;
   double dissipated = 0.0;

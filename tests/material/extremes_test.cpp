@@ -16,7 +16,7 @@ TEST(Extremes, OneHugeIncrementEqualsManySmallOnes) {
   // Monotonic proportional loading: the converged state depends only on the final strain, so
   // 1e-2 strain in one step must give the state of 1000 steps (and the same dissipation, which
   // is int F dD between the same integrities).
-  EnrichedBand model(test::paperEnriched());
+  TwoPhasePoint model(test::paperEnriched());
   const auto size = EffectiveSize::fixed(2.5);
   const Voigt total(1e-2, -2e-3, 0.0);
   EnrichedState one, many;
@@ -37,7 +37,7 @@ TEST(Extremes, OneHugeIncrementEqualsManySmallOnes) {
 
 TEST(Extremes, DamageApproachingOneLeavesNoNaN) {
   // Strains far beyond failure: stress -> 0, integrity stays positive, nothing is NaN.
-  EnrichedBand model(test::paperEnriched());
+  TwoPhasePoint model(test::paperEnriched());
   EnrichedState s;
   const auto size = EffectiveSize::fixed(1.0);
   UpdateResult r;
@@ -59,7 +59,7 @@ TEST(Extremes, DamageApproachingOneLeavesNoNaN) {
 
 TEST(Extremes, CompressionAloneNeverCracks) {
   // Eq. (12): no positive principal stress, no driving force, no band, no dissipation.
-  EnrichedBand model(test::paperEnriched());
+  TwoPhasePoint model(test::paperEnriched());
   EnrichedState s;
   for (int i = 0; i < 100; ++i) {
     const UpdateResult r = model.update(s, Voigt(-1e-4, -3e-5, 2e-5), EffectiveSize::fixed(2.5));
@@ -73,7 +73,7 @@ TEST(Extremes, CompressionAloneNeverCracks) {
 TEST(Extremes, CrackNormalStaysFixedWhenPrincipalAxesRotateByNinetyDegrees) {
   // After cracking in x, tension along y: n stays (1, 0), traction continuity (6) still holds
   // and damage never decreases; the y stress is carried by the bulk and the frozen band.
-  EnrichedBand model(test::paperEnriched());
+  TwoPhasePoint model(test::paperEnriched());
   EnrichedState s;
   const auto size = EffectiveSize::fixed(2.5);
   for (int i = 0; i < 20; ++i) ASSERT_TRUE(model.update(s, Voigt(1e-5, 0.0, 0.0), size).converged());
@@ -94,7 +94,7 @@ TEST(Extremes, CrackNormalStaysFixedWhenPrincipalAxesRotateByNinetyDegrees) {
 TEST(Extremes, VolumeFractionNearOne) {
   // f = 0.99: the point is almost all band; it must still converge through complete failure
   // and dissipate G_F per H (docs/model.md, identities).
-  const double bigH = test::kH / 0.99;
+  const double bigH = test::kBandWidth / 0.99;
   test::EnrichedRun run(test::paperEnriched(0.0), bigH);
   ASSERT_TRUE(run.step(test::kFt / test::kE));
   double d = 1e-7;
@@ -102,7 +102,7 @@ TEST(Extremes, VolumeFractionNearOne) {
     ASSERT_TRUE(run.step(d));
     d *= 1.02;
   }
-  const double gf = test::kH * dissipationToFailure({test::kE, test::kFt, test::kEp, test::kN});
+  const double gf = test::kBandWidth * dissipationToFailure({test::kE, test::kFt, test::kEp, test::kN});
   EXPECT_NEAR(bigH * run.dissipated, gf, 0.01 * gf);
 }
 
@@ -110,9 +110,9 @@ TEST(Extremes, VolumeFractionNearZeroReportsTheSnapBackCleanly) {
   // f = 1e-6 (H = 50 m, far past the snap-back size h (E + E_p)/E_p = 195.6 mm): under strain
   // control the first softening increment has no equilibrium branch. It must come back as a
   // flagged update with the state unchanged, never as NaN or negative dissipation.
-  EnrichedBand model(test::paperEnriched(0.0));
+  TwoPhasePoint model(test::paperEnriched(0.0));
   EnrichedState s;
-  const auto size = EffectiveSize::fixed(test::kH / 1e-6);
+  const auto size = EffectiveSize::fixed(test::kBandWidth / 1e-6);
   ASSERT_TRUE(model.update(s, Voigt(test::kFt / test::kE, 0.0, 0.0), size).converged());
   ASSERT_TRUE(s.band);
   const EnrichedState before = s;
@@ -131,7 +131,7 @@ TEST(Extremes, SnapBackSetsInJustAboveTheOneDimensionalSize) {
   // docs/model.md, identities: C of Eq. (9) vanishes at H = h (E + E_p) / E_p (1D, nu = 0): just below it the
   // first softening increment converges, just above it is reported as a snap-back.
   for (const auto& [ratio, expected] : {std::pair{0.999, UpdateStatus::Converged}, std::pair{1.001, UpdateStatus::SnapBack}}) {
-    EnrichedBand model(test::paperEnriched(0.0));
+    TwoPhasePoint model(test::paperEnriched(0.0));
     EnrichedState s;
     const auto size = EffectiveSize::fixed(ratio * test::kSnapBackSize);
     ASSERT_TRUE(model.update(s, Voigt(test::kFt / test::kE, 0.0, 0.0), size).converged());

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "material/material.hpp"
-#include "paper_concrete.hpp"
+#include "../paper_constants.hpp"
 
 namespace ecm {
 namespace {
@@ -16,7 +16,7 @@ MaterialParams concrete() {
   p.tensileStrength = test::kFt;
   p.softeningModulus = test::kEp;
   p.softeningExponent = test::kN;
-  p.bandWidth = test::kH;
+  p.bandWidth = test::kBandWidth;
   return p;
 }
 
@@ -54,7 +54,7 @@ TEST(Parameters, EffectiveSizeMustExceedTheBandWidth) {
   // Eq. (1): f = h / H must lie in (0, 1).
   const Material m(concrete());
   MaterialPoint point;
-  EXPECT_THROW(m.update(point, Voigt(1e-3, 0.0, 0.0), EffectiveSize::fixed(test::kH)), ParameterError);
+  EXPECT_THROW(m.update(point, Voigt(1e-3, 0.0, 0.0), EffectiveSize::fixed(test::kBandWidth)), ParameterError);
   EXPECT_FALSE(point.band);
 }
 

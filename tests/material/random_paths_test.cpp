@@ -13,7 +13,7 @@
 
 #include "material/driving_force.hpp"
 #include "material/material.hpp"
-#include "paper_concrete.hpp"
+#include "../paper_constants.hpp"
 
 namespace ecm {
 namespace {
@@ -65,7 +65,7 @@ void checkModel(ModelKind kind, Hypothesis hyp, SecondBandOption option, std::ui
   p.tensileStrength = test::kFt;
   p.softeningModulus = test::kEp;
   p.softeningExponent = test::kN;
-  p.bandWidth = test::kH;
+  p.bandWidth = test::kBandWidth;
   p.secondBand = option;
   const Material m(p);
   const Tangent compliance = elasticCompliance(p.elastic);

@@ -13,7 +13,7 @@
 #include "material/damage_function.hpp"
 #include "material/driving_force.hpp"
 #include "material/material.hpp"
-#include "paper_concrete.hpp"
+#include "../paper_constants.hpp"
 #include "uniaxial.hpp"
 
 namespace ecm {
@@ -26,19 +26,19 @@ MaterialParams concrete(SecondBandOption option, double nu = test::kNu) {
   p.tensileStrength = test::kFt;
   p.softeningModulus = test::kEp;
   p.softeningExponent = test::kN;
-  p.bandWidth = test::kH;
+  p.bandWidth = test::kBandWidth;
   p.secondBand = option;
   return p;
 }
 
 // The work done per unit volume to failure of one band, G_F / H, from the law itself.
 double bandFailureEnergy(const Material& m, double effectiveSize) {
-  return test::kH / effectiveSize * dissipationToFailure(m.params().band().law());
+  return test::kBandWidth / effectiveSize * dissipationToFailure(m.params().band().law());
 }
 
 // Stored (recoverable) energy per unit volume of a point: the bulk and each band, 1/2 eps : sigma.
 double storedEnergy(const Material& m, const MaterialPoint& p) {
-  const EnrichedBand& e = *m.enriched();
+  const TwoPhasePoint& e = *m.enriched();
   const Tangent& a = e.stiffness();
   double bands = 0.0, f = 0.0;
   Voigt bulkStrain = p.strain;
@@ -56,7 +56,7 @@ double storedEnergy(const Material& m, const MaterialPoint& p) {
 
 // Traction continuity, Eq. (6), on every band of a committed point.
 double continuityResidual(const Material& m, const MaterialPoint& p) {
-  const EnrichedBand& e = *m.enriched();
+  const TwoPhasePoint& e = *m.enriched();
   if (!p.band) return 0.0;
   if (!p.secondBand) return e.equilibrium(*p.band, p.strain, p.band->jump, false).residual.norm();
   const BandDamageLaw::LoadingSurface frozen[2] = {{p.band->integrity, INFINITY}, {p.secondBand->integrity, INFINITY}};
@@ -298,7 +298,7 @@ TEST(SecondBand, ASnapBackOfTheSecondBandIsReportedOrReleasedOntoAStableState) {
     const Voigt d(0.0, 1e-6 * (1.0 + i / 100.0), 0.0);
     if (!p.secondBand && !reported) {  // the increment that opens the second band, under Report
       MaterialPoint q = p;
-      const UpdateResult r = m.update(q, d, size, UpdateOptions(SnapBackPolicy::Report));
+      const UpdateResult r = m.update(q, d, size, UpdateOptions(SnapBackPolicy::Stop));
       if (!r.converged()) {
         reported = true;
         EXPECT_EQ(r.status, UpdateStatus::SnapBack);
@@ -342,7 +342,7 @@ TEST(SecondBand, ASecondBandOpeningAboveItsOnsetIsReleased) {
   const Voigt increment(-1.6934860263671941e-08, 1.5812560849596806e-08, -2.4128001214851621e-08);
   const Voigt before = m.stress(p);
   MaterialPoint reported = p;
-  EXPECT_EQ(m.update(reported, increment, size, UpdateOptions(SnapBackPolicy::Report)).status, UpdateStatus::SnapBack);
+  EXPECT_EQ(m.update(reported, increment, size, UpdateOptions(SnapBackPolicy::Stop)).status, UpdateStatus::SnapBack);
   EXPECT_FALSE(reported.secondBand);
   EXPECT_EQ(reported.strain, p.strain);
   const UpdateResult r = m.update(p, increment, size, UpdateOptions(SnapBackPolicy::Release));
@@ -358,7 +358,7 @@ TEST(SecondBand, ASecondBandOpeningAboveItsOnsetIsReleased) {
 TEST(SecondBand, RefusesAnEffectiveSizeWithoutRoomForTwoBands) {
   const Material m(concrete(SecondBandOption::Orthogonal));
   MaterialPoint p;
-  const auto size = EffectiveSize::fixed(1.5 * test::kH);  // f1 + f2 = 4/3
+  const auto size = EffectiveSize::fixed(1.5 * test::kBandWidth);  // f1 + f2 = 4/3
   bool refused = false;
   try {
     for (int i = 0; i < 400; ++i) m.update(p, Voigt(2e-6, 2e-6, 0.0), size);

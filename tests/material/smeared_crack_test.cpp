@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "paper_concrete.hpp"
+#include "../paper_constants.hpp"
 #include "uniaxial.hpp"
 
 namespace ecm {

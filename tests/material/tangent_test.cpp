@@ -5,7 +5,7 @@
 #include <functional>
 
 #include "material/material.hpp"
-#include "paper_concrete.hpp"
+#include "../paper_constants.hpp"
 
 namespace ecm {
 namespace {
@@ -50,7 +50,7 @@ MaterialParams params(ModelKind kind, Hypothesis hyp = Hypothesis::PlaneStress) 
   p.tensileStrength = test::kFt;
   p.softeningModulus = test::kEp;
   p.softeningExponent = test::kN;
-  p.bandWidth = test::kH;
+  p.bandWidth = test::kBandWidth;
   return p;
 }
 

@@ -35,7 +35,7 @@ Scene crackingBlock() {
   Scene s = notchedCrackingBlock();
   s.name = "cracking-block";
   s.loads = {{"push", {Vec2(-1.0, 60.0), Vec2(3.0, 100.0)}, LoadTarget::Particles, Vec2(200.0, 0.0),
-              History::linearRamp(1.0, 5e-5)}};
+              TimeFunction::linearRamp(1.0, 5e-5)}};
   s.endTime = 1.2e-4;
   s.outputInterval = 1e-5;
   return s;

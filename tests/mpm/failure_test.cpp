@@ -54,7 +54,7 @@ Scene snapBackBlock() {
   all.box = {Vec2(-1.0, -1.0), Vec2(1000.0, 1000.0)};
   Mat2 g = Mat2::Zero();
   g(0, 0) = 20.0;
-  all.field = AffineVelocity{g, Vec2(450.0, 450.0), History::hold(1.0)};
+  all.field = AffineVelocity{g, Vec2(450.0, 450.0), TimeFunction::hold(1.0)};
   s.conditions = {all};
   return s;
 }
@@ -84,7 +84,7 @@ TEST(Failure, MaterialUpdateThatCannotConvergeStopsWithStatusAndResidual) {
   // snap_back: stop the run stops there; by default (release) the points fail onto their
   // stable branch, are counted, and the run goes on.
   Scene s = snapBackBlock();
-  s.solver.snapBack = SnapBackPolicy::Report;
+  s.solver.snapBack = SnapBackPolicy::Stop;
   Solver solver(s, 1);
   try {
     for (int n = 0; n < 100000; ++n) solver.advance();
@@ -122,7 +122,7 @@ TEST(Failure, InvalidScenesAreRefusedWithAReason) {
   s.conditions[0].box = {Vec2(-50.0, -50.0), Vec2(-40.0, -40.0)};
   EXPECT_TRUE(contains(message(s), "contains no grid node")) << message(s);
   s = tensionBlock();
-  s.loads[0].history = History::smoothRamp(1.0, -1.0);
+  s.loads[0].history = TimeFunction::smoothRamp(1.0, -1.0);
   EXPECT_TRUE(contains(message(s), "ramp time")) << message(s);
 }
 

@@ -44,7 +44,7 @@ TEST(QuasiStatic, PrescribedDisplacementReactionMatchesStiffness) {
   NodeCondition top;
   top.name = "top";
   top.box = {Vec2(-1.0, 100.0), Vec2(101.0, 100.0)};
-  top.component[1] = {Prescribed::Displacement, History::smoothRamp(0.01, 3e-4)};
+  top.component[1] = {Prescribed::Displacement, TimeFunction::smoothRamp(0.01, 3e-4)};
   s.conditions.push_back(top);
   Solver solver(s, 1);
   while (solver.time() < s.endTime) solver.advance();

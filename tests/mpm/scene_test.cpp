@@ -9,20 +9,20 @@
 namespace ecm::mpm::test {
 namespace {
 
-TEST(History, Values) {
-  EXPECT_DOUBLE_EQ(History::hold(2.0)(5.0), 2.0);
-  EXPECT_DOUBLE_EQ(History::linearRamp(2.0, 1.0)(0.25), 0.5);
-  EXPECT_DOUBLE_EQ(History::linearRamp(2.0, 1.0)(3.0), 2.0);
-  const History s = History::smoothRamp(2.0, 1.0);
+TEST(TimeFunction, Values) {
+  EXPECT_DOUBLE_EQ(TimeFunction::hold(2.0)(5.0), 2.0);
+  EXPECT_DOUBLE_EQ(TimeFunction::linearRamp(2.0, 1.0)(0.25), 0.5);
+  EXPECT_DOUBLE_EQ(TimeFunction::linearRamp(2.0, 1.0)(3.0), 2.0);
+  const TimeFunction s = TimeFunction::smoothRamp(2.0, 1.0);
   EXPECT_DOUBLE_EQ(s(0.0), 0.0);
   EXPECT_DOUBLE_EQ(s(0.5), 1.0);
   EXPECT_DOUBLE_EQ(s(1.0), 2.0);
   EXPECT_NEAR((s(1e-4) - s(0.0)) / 1e-4, 0.0, 1e-6);  // starts at rest
-  const History t = History::table({0.0, 1.0, 3.0}, {0.0, 2.0, -2.0});
+  const TimeFunction t = TimeFunction::table({0.0, 1.0, 3.0}, {0.0, 2.0, -2.0});
   EXPECT_DOUBLE_EQ(t(0.5), 1.0);
   EXPECT_DOUBLE_EQ(t(2.0), 0.0);
   EXPECT_DOUBLE_EQ(t(9.0), -2.0);
-  EXPECT_THROW(History::table({0.0, 0.0}, {1.0, 2.0}).validate(), std::invalid_argument);
+  EXPECT_THROW(TimeFunction::table({0.0, 0.0}, {1.0, 2.0}).validate(), std::invalid_argument);
 }
 
 TEST(Geometry, PolygonAndCircle) {

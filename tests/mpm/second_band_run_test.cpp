@@ -55,7 +55,7 @@ TEST(SecondBandRun, KeepsContinuityOnBothBandsAndIsIndependentOfTheThreads) {
   }
   const Particles& p = one.particles();
   ASSERT_FALSE(p.secondBands.empty());
-  const EnrichedBand& m = *one.materials()[0].enriched();
+  const TwoPhasePoint& m = *one.materials()[0].enriched();
   for (std::size_t i = 0; i < p.size(); ++i) {
     const BandState* second = p.secondBandOf(i);
     if (!second) continue;

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "../material/paper_concrete.hpp"
+#include "../paper_constants.hpp"
 #include "mpm/solver.hpp"
 
 namespace ecm::mpm::test {
@@ -18,7 +18,7 @@ inline MaterialParams elasticMaterial(double e = 32000.0, double nu = 0.0, doubl
   return m;
 }
 
-// The paper's DEN concrete (tests/material/paper_concrete.hpp) with a density.
+// The paper's DEN concrete (tests/paper_constants.hpp) with a density.
 inline MaterialParams paperConcrete() {
   MaterialParams m;
   m.name = "den-concrete";
@@ -28,7 +28,7 @@ inline MaterialParams paperConcrete() {
   m.tensileStrength = ecm::test::kFt;
   m.softeningModulus = ecm::test::kEp;
   m.softeningExponent = ecm::test::kN;
-  m.bandWidth = ecm::test::kH;
+  m.bandWidth = ecm::test::kBandWidth;
   return m;
 }
 
@@ -85,7 +85,7 @@ inline Scene tensionBlock(double force = 1000.0, int cells = 10) {
   s.bodies = {{Shape::rectangle(Vec2(0.0, 0.0), Vec2(100.0, 100.0)), 0, false, Vec2::Zero()}};
   s.conditions = {NodeCondition::fixed("base", {Vec2(-1.0, 0.0), Vec2(101.0, 0.0)})};
   s.loads = {{"pull", {Vec2(-1.0, 100.0 - h / 2.0), Vec2(101.0, 101.0)}, LoadTarget::Particles, Vec2(0.0, force),
-              History::smoothRamp(1.0, 3e-4)}};
+              TimeFunction::smoothRamp(1.0, 3e-4)}};
   s.solver.damping.local = 0.3;
   s.endTime = 1.2e-3;
   return s;
@@ -104,7 +104,7 @@ inline Scene notchedCrackingBlock() {
   NodeCondition top;
   top.name = "top";
   top.box = {Vec2(-20.0, 100.0), Vec2(120.0, 100.0)};
-  top.component[1] = {Prescribed::Velocity, History::smoothRamp(150.0, 2e-5)};
+  top.component[1] = {Prescribed::Velocity, TimeFunction::smoothRamp(150.0, 2e-5)};
   s.conditions.push_back(top);
   s.solver.damping.local = 0.1;
   return s;
@@ -120,7 +120,7 @@ inline Scene twoBandBlock() {
   NodeCondition right;
   right.name = "right";
   right.box = {Vec2(100.0, 5.0), Vec2(100.0, 95.0)};
-  right.component[0] = {Prescribed::Velocity, History::smoothRamp(150.0, 2e-5)};
+  right.component[0] = {Prescribed::Velocity, TimeFunction::smoothRamp(150.0, 2e-5)};
   s.conditions.push_back(right);
   s.endTime = 2.4e-4;
   s.outputInterval = 2e-5;

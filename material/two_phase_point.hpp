@@ -74,14 +74,16 @@ struct BandEquilibrium {
 };
 
 // What an update does when Eq. (6) has no stable root under the given strain (a snap-back).
+// One vocabulary from the scenes (`snap_back: stop | release`, both tools) to the code.
 enum class SnapBackPolicy {
-  Report,   // return UpdateStatus::SnapBack, state unchanged (the point driver traces it instead)
-  Release,  // the band fails dynamically at the end strain onto its stable branch (explicit MPM)
+  Stop,     // the update returns UpdateStatus::SnapBack with the state unchanged; ecm-mpm stops the
+            // run there, ecm-point stops at the limit point (the driver also uses it to find it)
+  Release,  // the band fails at the end strain onto its stable branch (both tools' default)
 };
 
 // What the caller of an update needs besides the stress and the new state.
 struct UpdateOptions {
-  SnapBackPolicy snapBack = SnapBackPolicy::Report;
+  SnapBackPolicy snapBack = SnapBackPolicy::Stop;
   bool tangent = true;  // the consistent tangent of Eq. (10); an explicit solver does not use it
   // Bit i set: the caller holds Voigt stress component i fixed (mixed control) and solves for
   // its strain. A state is then stable only if the consistent tangent's block of these
@@ -91,9 +93,9 @@ struct UpdateOptions {
   UpdateOptions(SnapBackPolicy policy, bool withTangent = true) : snapBack(policy), tangent(withTangent) {}  // NOLINT: implicit
 };
 
-class EnrichedBand {
+class TwoPhasePoint {
  public:
-  explicit EnrichedBand(const EnrichedParams& p);
+  explicit TwoPhasePoint(const EnrichedParams& p);
 
   // The UMAT-style update of a point. On failure the state is left unchanged.
   UpdateResult update(EnrichedState& state, const Voigt& strainIncrement, const EffectiveSize& size) const;

@@ -1,4 +1,4 @@
-#include "material/enriched_band.hpp"
+#include "material/two_phase_point.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -47,7 +47,7 @@ void EnrichedParams::validate() const {
   requireInRange("band_width h (mm)", bandWidth, 0.0, 1e300);
 }
 
-EnrichedBand::EnrichedBand(const EnrichedParams& p)
+TwoPhasePoint::TwoPhasePoint(const EnrichedParams& p)
     : law_((p.validate(), p.band)),
       bandWidth_(p.bandWidth),
       onsetBound_(0.5 * (law_.compliance()(0, 0) + std::abs(law_.compliance()(0, 1)))),
@@ -56,42 +56,42 @@ EnrichedBand::EnrichedBand(const EnrichedParams& p)
       secondBand_(p.secondBand),
       secondOnsetStress_(std::sqrt(2.0 * law_.onsetDrivingForce() / law_.compliance()(0, 0))) {}
 
-double EnrichedBand::intactDrivingForce(const Voigt& strain) const {
+double TwoPhasePoint::intactDrivingForce(const Voigt& strain) const {
   return drivingForceValue(stiffness() * strain, law_.compliance());  // bitwise drivingForce().value
 }
 
-std::optional<double> EnrichedBand::onsetFraction(const Voigt& strain, const Voigt& increment) const {
+std::optional<double> TwoPhasePoint::onsetFraction(const Voigt& strain, const Voigt& increment) const {
   return law_.onsetFraction(strain, increment);
 }
 
-BandEquilibrium EnrichedBand::equilibrium(const BandState& b, const BandDamageLaw::LoadingSurface& surface,
+BandEquilibrium TwoPhasePoint::equilibrium(const BandState& b, const BandDamageLaw::LoadingSurface& surface,
                                           const Voigt& strain, const Vec2& jump, bool loadingTangent) const {
-  const JumpMap n = jumpToStrain(b.crackNormal);
+  const JumpMap N = jumpToStrain(b.crackNormal);
   const double f = b.volumeFraction;
   BandEquilibrium eq;
-  eq.bandStrain = b.onsetStrain + n * jump / bandWidth_;                  // Eq. (3)
+  eq.bandStrain = b.onsetStrain + N * jump / bandWidth_;                  // Eq. (3)
   eq.band = law_.evaluate(surface, eq.bandStrain, loadingTangent);        // Eqs. (5), (11)-(13)
   eq.stress = stiffness() * (strain - f * eq.bandStrain) / (1.0 - f);    // Eqs. (2), (4)
-  eq.residual = n.transpose() * (eq.stress - eq.band.stress);            // Eq. (6)
-  eq.jacobian = n.transpose() * (f / (1.0 - f) * stiffness() + eq.band.tangent) * n / bandWidth_;  // Eq. (9)
+  eq.residual = N.transpose() * (eq.stress - eq.band.stress);            // Eq. (6)
+  eq.jacobian = N.transpose() * (f / (1.0 - f) * stiffness() + eq.band.tangent) * N / bandWidth_;  // Eq. (9)
   return eq;
 }
 
-Mat2 EnrichedBand::secantJacobian(const BandState& b, double x) const {
-  const JumpMap n = jumpToStrain(b.crackNormal);
+Mat2 TwoPhasePoint::secantJacobian(const BandState& b, double x) const {
+  const JumpMap N = jumpToStrain(b.crackNormal);
   const double f = b.volumeFraction;
-  return n.transpose() * ((f / (1.0 - f) + x) * stiffness()) * n / bandWidth_;  // Eq. (9), a_L = x a
+  return N.transpose() * ((f / (1.0 - f) + x) * stiffness()) * N / bandWidth_;  // Eq. (9), a_L = x a
 }
 
-Tangent EnrichedBand::consistentTangent(const BandState& b, const Mat2& jacobian) const {
-  const JumpMap n = jumpToStrain(b.crackNormal);
+Tangent TwoPhasePoint::consistentTangent(const BandState& b, const Mat2& jacobian) const {
+  const JumpMap N = jumpToStrain(b.crackNormal);
   const double f = b.volumeFraction;
   const Tangent& a = stiffness();
-  const Eigen::Matrix<double, 2, 3> dJumpdStrain = jacobian.inverse() * n.transpose() * a / (1.0 - f);  // Eq. (8)
-  return a / (1.0 - f) * (Tangent::Identity() - f / bandWidth_ * n * dJumpdStrain);                      // Eq. (10)
+  const Eigen::Matrix<double, 2, 3> dJumpdStrain = jacobian.inverse() * N.transpose() * a / (1.0 - f);  // Eq. (8)
+  return a / (1.0 - f) * (Tangent::Identity() - f / bandWidth_ * N * dJumpdStrain);                      // Eq. (10)
 }
 
-UpdateResult EnrichedBand::updateCracked(BandState& b, Voigt& strain, const Voigt& increment,
+UpdateResult TwoPhasePoint::updateCracked(BandState& b, Voigt& strain, const Voigt& increment,
                                          UpdateOptions options) const {
   UpdateResult r = predictCorrect(b, strain, increment, options.tangent, options.stressControlled);
   if (r.converged() || options.snapBack != SnapBackPolicy::Release) return r;
@@ -104,7 +104,7 @@ UpdateResult EnrichedBand::updateCracked(BandState& b, Voigt& strain, const Voig
   return released.converged() ? released : r;
 }
 
-UpdateResult EnrichedBand::releaseSnapBack(BandState& b, Voigt& strain, const Voigt& increment, bool tangent) const {
+UpdateResult TwoPhasePoint::releaseSnapBack(BandState& b, Voigt& strain, const Voigt& increment, bool tangent) const {
   const Voigt eps = strain + increment;
   const double f = b.volumeFraction;
   // With the damage frozen at x, Eq. (6) is linear in [u] (secant K of Eq. (9)): [u](x) in one
@@ -174,7 +174,7 @@ UpdateResult EnrichedBand::releaseSnapBack(BandState& b, Voigt& strain, const Vo
   return res;
 }
 
-UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent,
+UpdateResult TwoPhasePoint::predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent,
                                           unsigned stressControlled) const {
   const Voigt eps = strain + increment;
   UpdateResult res;
@@ -189,16 +189,16 @@ UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voi
   //    K of Eq. (9) (a_L = x0 a, always positive definite) solves it in one step. If the band
   //    stays inside its loading surface, that is the answer (unloading or neutral loading):
   //    most cracked updates of a structure end here, without the damage law or its tangent.
-  const JumpMap n = jumpToStrain(b.crackNormal);
+  const JumpMap N = jumpToStrain(b.crackNormal);
   const double x0 = b.integrity;
   Vec2 jump = b.jump;
-  Voigt aBand = stiffness() * (b.onsetStrain + n * jump / bandWidth_);            // a eps_L, Eq. (3)
+  Voigt aBand = stiffness() * (b.onsetStrain + N * jump / bandWidth_);            // a eps_L, Eq. (3)
   const auto stressOf = [&](const Voigt& aL) -> Voigt { return (aEps - f * aL) / (1.0 - f); };  // Eqs. (2), (4)
-  Vec2 residual = n.transpose() * (stressOf(aBand) - x0 * aBand);                  // Eqs. (6), (11)
+  Vec2 residual = N.transpose() * (stressOf(aBand) - x0 * aBand);                  // Eqs. (6), (11)
   for (int it = 0; it < 3 && residual.norm() > tol; ++it) {  // 1 step + round-off
     jump += secantSolve(b, x0, residual);
-    aBand = stiffness() * (b.onsetStrain + n * jump / bandWidth_);
-    residual = n.transpose() * (stressOf(aBand) - x0 * aBand);
+    aBand = stiffness() * (b.onsetStrain + N * jump / bandWidth_);
+    residual = N.transpose() * (stressOf(aBand) - x0 * aBand);
     ++res.iterations;
   }
   // The loading surface F(x0) >= F(1): a band whose Y is below onset (a closed or barely open
@@ -278,7 +278,7 @@ UpdateResult EnrichedBand::predictCorrect(BandState& b, Voigt& strain, const Voi
   return finishUpdate(b, strain, eps, jump, eq, surface.threshold, tol, tangent, res);
 }
 
-Vec2 EnrichedBand::stabilityMargins(const BandState& b, const Mat2& jacobian, unsigned stressControlled) const {
+Vec2 TwoPhasePoint::stabilityMargins(const BandState& b, const Mat2& jacobian, unsigned stressControlled) const {
   // K scaled by its intact secant value mu (f / (1 - f) + 1) / h.
   const double kMargin =
       smallestRealEigenvalue(jacobian) * bandWidth_ / (shearModulus_ * (b.volumeFraction / (1.0 - b.volumeFraction) + 1.0));
@@ -288,7 +288,7 @@ Vec2 EnrichedBand::stabilityMargins(const BandState& b, const Mat2& jacobian, un
   return {kMargin, stressControlledMargin(consistentTangent(b, jacobian), stressControlled)};
 }
 
-double EnrichedBand::stressControlledMargin(const Tangent& d, unsigned stressControlled) const {
+double TwoPhasePoint::stressControlledMargin(const Tangent& d, unsigned stressControlled) const {
   int idx[3], m = 0;
   for (int i = 0; i < 3; ++i)
     if (stressControlled & (1u << i)) idx[m++] = i;
@@ -305,19 +305,19 @@ double EnrichedBand::stressControlledMargin(const Tangent& d, unsigned stressCon
   return dMargin / law_.law().youngsModulus;
 }
 
-bool EnrichedBand::bandHasFailed(const BandState& b) const {
-  const JumpMap n = jumpToStrain(b.crackNormal);
-  const Vec2 traction = b.integrity * (n.transpose() * (stiffness() * (b.onsetStrain + n * b.jump / bandWidth_)));  // Eq. (11)
+bool TwoPhasePoint::bandHasFailed(const BandState& b) const {
+  const JumpMap N = jumpToStrain(b.crackNormal);
+  const Vec2 traction = b.integrity * (N.transpose() * (stiffness() * (b.onsetStrain + N * b.jump / bandWidth_)));  // Eq. (11)
   return traction.norm() < kFailedTraction * tensileStrength();
 }
 
-Mat2 EnrichedBand::loadingJacobian(const BandState& b, const BandDamageLaw::LoadingSurface& surface, const Vec2& jump) const {
-  const JumpMap n = jumpToStrain(b.crackNormal);
-  const BandResponse band = law_.evaluate(surface, b.onsetStrain + n * jump / bandWidth_, true);  // Eq. (3)
-  return n.transpose() * (b.volumeFraction / (1.0 - b.volumeFraction) * stiffness() + band.tangent) * n / bandWidth_;  // Eq. (9)
+Mat2 TwoPhasePoint::loadingJacobian(const BandState& b, const BandDamageLaw::LoadingSurface& surface, const Vec2& jump) const {
+  const JumpMap N = jumpToStrain(b.crackNormal);
+  const BandResponse band = law_.evaluate(surface, b.onsetStrain + N * jump / bandWidth_, true);  // Eq. (3)
+  return N.transpose() * (b.volumeFraction / (1.0 - b.volumeFraction) * stiffness() + band.tangent) * N / bandWidth_;  // Eq. (9)
 }
 
-std::optional<double> EnrichedBand::firstUnstableOnPath(const BandState& b, const BandDamageLaw::LoadingSurface& surface,
+std::optional<double> TwoPhasePoint::firstUnstableOnPath(const BandState& b, const BandDamageLaw::LoadingSurface& surface,
                                                         const Vec2& jump, unsigned stressControlled) const {
   // States along the straight jump segment from the converged state b to `jump`, the band on
   // its loading surface (elastic inside it, loading beyond it): the equilibrium path itself
@@ -384,7 +384,7 @@ std::optional<double> EnrichedBand::firstUnstableOnPath(const BandState& b, cons
   return first;
 }
 
-UpdateResult EnrichedBand::finishUpdate(BandState& b, Voigt& strain, const Voigt& eps, const Vec2& jump,
+UpdateResult TwoPhasePoint::finishUpdate(BandState& b, Voigt& strain, const Voigt& eps, const Vec2& jump,
                                         const BandEquilibrium& eq, double thresholdOld, double tol, bool tangent,
                                         UpdateResult& res) const {
   res.residual = eq.residual.norm();
@@ -403,7 +403,7 @@ UpdateResult EnrichedBand::finishUpdate(BandState& b, Voigt& strain, const Voigt
   return res;
 }
 
-UpdateResult EnrichedBand::updateIntactSlow(Voigt& strain, const Voigt& increment, const EffectiveSize& size,
+UpdateResult TwoPhasePoint::updateIntactSlow(Voigt& strain, const Voigt& increment, const EffectiveSize& size,
                                             std::optional<BandState>& onset, UpdateOptions options,
                                             std::optional<BandState>* secondOnset) const {
   UpdateResult r;
@@ -431,7 +431,7 @@ UpdateResult EnrichedBand::updateIntactSlow(Voigt& strain, const Voigt& incremen
   return r;
 }
 
-UpdateResult EnrichedBand::update(EnrichedState& state, const Voigt& increment, const EffectiveSize& size) const {
+UpdateResult TwoPhasePoint::update(EnrichedState& state, const Voigt& increment, const EffectiveSize& size) const {
   if (!opensSecondBand()) {
     if (state.band) return updateCracked(*state.band, state.strain, increment);
     return updateIntact(state.strain, increment, size, state.band);

@@ -1,4 +1,4 @@
-#include "mpm/history.hpp"
+#include "mpm/time_function.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,16 +6,16 @@
 
 namespace ecm::mpm {
 
-double History::operator()(double t) const {
+double TimeFunction::operator()(double t) const {
   switch (kind) {
-    case HistoryKind::Hold: return value;
-    case HistoryKind::LinearRamp: return t >= rampTime ? value : value * std::max(t, 0.0) / rampTime;
-    case HistoryKind::SmoothRamp: {
+    case TimeFunctionKind::Hold: return value;
+    case TimeFunctionKind::LinearRamp: return t >= rampTime ? value : value * std::max(t, 0.0) / rampTime;
+    case TimeFunctionKind::SmoothRamp: {
       if (t >= rampTime) return value;
       const double r = std::max(t, 0.0) / rampTime;
       return value * r * r * r * (10.0 + r * (-15.0 + 6.0 * r));
     }
-    case HistoryKind::Table: {
+    case TimeFunctionKind::Table: {
       if (t <= times.front()) return values.front();
       if (t >= times.back()) return values.back();
       const auto hi = std::upper_bound(times.begin(), times.end(), t);
@@ -27,11 +27,11 @@ double History::operator()(double t) const {
   return value;
 }
 
-void History::validate() const {
+void TimeFunction::validate() const {
   if (!std::isfinite(value)) throw std::invalid_argument("history value must be finite");
-  if ((kind == HistoryKind::LinearRamp || kind == HistoryKind::SmoothRamp) && !(rampTime > 0.0))
+  if ((kind == TimeFunctionKind::LinearRamp || kind == TimeFunctionKind::SmoothRamp) && !(rampTime > 0.0))
     throw std::invalid_argument("ramp time must be > 0 s");
-  if (kind == HistoryKind::Table) {
+  if (kind == TimeFunctionKind::Table) {
     if (times.empty() || times.size() != values.size())
       throw std::invalid_argument("history table needs equally many (>= 1) times and values");
     for (std::size_t i = 1; i < times.size(); ++i)
