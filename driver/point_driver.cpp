@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "driver/opening_control.hpp"
+#include "io/value_error.hpp"
 
 namespace ecm::driver {
 
@@ -546,7 +547,35 @@ int totalIncrements(const PointScene& scene) {
   return n;
 }
 
-PointRun runPoint(const PointScene& scene, const RowObserver& observe) { return Runner(scene, observe).run(); }
+void PointScene::validate() const {
+  try {
+    material.validate();
+  } catch (const ParameterError& e) {
+    throw io::ValueError("material", e.what());
+  }
+  if (!(effectiveSize > 0.0 && std::isfinite(effectiveSize))) throw io::ValueError("effective_size", "must be > 0 mm");
+  if (material.model == ModelKind::Enriched)
+    if (const std::string problem =
+            effectiveSizeProblem(effectiveSize, material.bandWidth, material.secondBand == SecondBandOption::Off ? 1 : 2);
+        !problem.empty())
+      throw io::ValueError("effective_size", problem);
+  if (!(relativeTolerance > 0.0 && relativeTolerance <= 1e-3)) throw io::ValueError("tolerance", "must be in (0, 1e-3]");
+  if (substepLevels < 0 || substepLevels > 20) throw io::ValueError("substep_levels", "must be in [0, 20]");
+  if (path.empty()) throw io::ValueError("path", "needs at least one segment");
+  for (const Segment& seg : path) {
+    if (seg.openingControl && material.model != ModelKind::Enriched)
+      throw io::ValueError("path", std::string("opening control needs a band (model: enriched); this material is ") +
+                                       toString(material.model));
+    if (seg.openingControl && material.secondBand != SecondBandOption::Off)
+      throw io::ValueError("path", "opening control drives the opening of one band; with second_band: orthogonal a point "
+                                   "may have two (docs/model.md)");
+  }
+}
+
+PointRun runPoint(const PointScene& scene, const RowObserver& observe) {
+  scene.validate();
+  return Runner(scene, observe).run();
+}
 
 PointSummary summarise(const PointScene& scene, const PointRun& run) {
   PointSummary s;

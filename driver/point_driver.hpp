@@ -21,6 +21,9 @@ struct PointScene {
   SnapBackPolicy snapBack = SnapBackPolicy::Release;
   double relativeTolerance = 1e-8;  // stress control residual <= this * f_t' (or * 1 MPa if elastic)
   int substepLevels = 10;           // a failing increment is retried in 2, 4, ... 2^levels pieces (0: never)
+  // The one check of a point scene's values; throws io::ValueError naming the key (runPoint and
+  // the YAML reader call it).
+  void validate() const;
 };
 
 struct HistoryRow {

@@ -3,6 +3,7 @@
 #include <array>
 
 #include "io/material_yaml.hpp"
+#include "io/value_error.hpp"
 
 namespace ecm::driver {
 
@@ -73,25 +74,17 @@ PointScene readPointScene(const YamlMap& map) {
     s.material.elastic.hypothesis =
         map.getEnum("hypothesis", {"plane_stress", "plane_strain"}) == "plane_stress" ? Hypothesis::PlaneStress
                                                                                        : Hypothesis::PlaneStrain;
-  s.effectiveSize = map.get<double>("effective_size", Range::positive());
-  if (s.material.model == ModelKind::Enriched)
-    if (const std::string problem = effectiveSizeProblem(s.effectiveSize, s.material.bandWidth,
-                                                                s.material.secondBand == SecondBandOption::Off ? 1 : 2); !problem.empty())
-      map.fail("effective_size", problem);
+  s.effectiveSize = map.get<double>("effective_size");
   s.snapBack = io::readSnapBackPolicy(map);
-  s.relativeTolerance = map.getOr<double>("tolerance", 1e-8, Range{0.0, 1e-3, false, true});
-  s.substepLevels = map.getOr<int>("substep_levels", 10, Range::closed(0.0, 20.0));
-  const YamlMap path = map.child("path");
-  s.path = readPath(path, s.material.elastic.poissonRatio);
-  for (const Segment& seg : s.path)
-    if (seg.openingControl && s.material.model != ModelKind::Enriched)
-      path.failHere(std::string("opening control needs a band (model: enriched); this material is ") +
-                    toString(s.material.model));
-  for (const Segment& seg : s.path)
-    if (seg.openingControl && s.material.secondBand != SecondBandOption::Off)
-      path.failHere("opening control drives the opening of one band; with second_band: orthogonal a point may have two "
-                    "(docs/model.md)");
+  s.relativeTolerance = map.getOr<double>("tolerance", s.relativeTolerance);
+  s.substepLevels = map.getOr<int>("substep_levels", s.substepLevels);
+  s.path = readPath(map.child("path"), s.material.elastic.poissonRatio);
   map.finish();
+  try {
+    s.validate();  // the values, checked in one place (PointScene::validate)
+  } catch (const io::ValueError& e) {
+    map.failAt(e.key, e.reason);
+  }
   return s;
 }
 

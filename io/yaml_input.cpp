@@ -211,6 +211,31 @@ void YamlMap::failHere(const std::string& reason) const {
   throw InputError(state_->file, state_->line, (state_->path.empty() ? "" : "key '" + state_->path + "': ") + reason);
 }
 
+void YamlMap::failAt(const std::string& keyPath, const std::string& reason) const {
+  YAML::Node node;
+  node.reset(state_->node);  // reset() rebinds; operator= would write into the document
+  int line = state_->line;
+  std::size_t at = 0;
+  while (at < keyPath.size()) {  // segments "key" or "key[i]", separated by '.'
+    const std::size_t dot = std::min(keyPath.find('.', at), keyPath.size());
+    const std::string segment = keyPath.substr(at, dot - at);
+    at = dot + 1;
+    const std::size_t bracket = segment.find('[');
+    const auto e = node.IsMap() ? find(node, segment.substr(0, bracket)) : std::nullopt;
+    if (!e) break;
+    line = lineOf(e->key, line);
+    node.reset(e->value);
+    if (bracket == std::string::npos) continue;
+    const std::size_t i = std::stoul(segment.substr(bracket + 1));
+    if (!node.IsSequence() || i >= node.size()) break;
+    const YAML::Node item = node[i];
+    line = lineOf(item, line);
+    node.reset(item);
+  }
+  const std::string full = state_->path.empty() || keyPath.empty() ? state_->path + keyPath : state_->path + "." + keyPath;
+  throw InputError(state_->file, line, (full.empty() ? "" : "key '" + full + "': ") + reason);
+}
+
 YAML::Node YamlMap::require(const std::string& key) const {
   state_->known.insert(key);
   const auto e = find(state_->node, key);

@@ -89,6 +89,9 @@ class YamlMap {
   [[noreturn]] void fail(const std::string& key, const std::string& reason) const;
   // Throws an InputError at the map's line.
   [[noreturn]] void failHere(const std::string& reason) const;
+  // Throws an InputError for a key path below this map ("solver.cfl", "materials[1].name"), at
+  // the line of its deepest part present in the file (a ValueError from a validate()).
+  [[noreturn]] void failAt(const std::string& keyPath, const std::string& reason) const;
 
   // Rejects every key of this map (and of the maps obtained through child()/sequence()) that
   // was never asked for.

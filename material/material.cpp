@@ -1,5 +1,6 @@
 #include "material/material.hpp"
 
+#include <sstream>
 #include <string>
 
 #include "material/parameter_check.hpp"
@@ -54,37 +55,103 @@ Material::Material(const MaterialParams& p)
   if (const auto* s = smeared()) params_.softeningModulus = s->law().law().softeningModulus;
 }
 
-UpdateResult Material::update(MaterialPoint& point, const Voigt& increment, const EffectiveSize& size,
-                              const UpdateOptions& options) const {
-  struct Visitor {
-    MaterialPoint& p;
-    const Voigt& d;
-    const EffectiveSize& size;
-    const UpdateOptions& options;
-    UpdateResult operator()(const LinearElastic& m) const {
-      LinearElastic::State s{p.strain};
-      UpdateResult r = m.update(s, d);
-      p.strain = s.strain;
+UpdateResult Material::updateOnce(PointState s, const Voigt& d, const EffectiveSize& size, OpenedBands& opened,
+                                  const UpdateOptions& options) const {
+  switch (params_.model) {
+    case ModelKind::LinearElastic: {
+      LinearElastic::State e{s.strain};
+      const UpdateResult r = std::get<LinearElastic>(model_).update(e, d);
+      s.strain = e.strain;
       return r;
     }
-    UpdateResult operator()(const SmearedCrack& m) const {
-      SmearedCrack::State s{p.strain, p.integrity};
-      UpdateResult r = m.update(s, d);
-      p.strain = s.strain;
-      p.integrity = s.integrity;
+    case ModelKind::SmearedCrack: {
+      SmearedCrack::State c{s.strain, *s.integrity};
+      const UpdateResult r = std::get<SmearedCrack>(model_).update(c, d);
+      s.strain = c.strain;
+      *s.integrity = c.integrity;
       return r;
     }
-    UpdateResult operator()(const TwoPhasePoint& m) const {
+    case ModelKind::Enriched: {
+      const TwoPhasePoint& m = *std::get_if<TwoPhasePoint>(&model_);
       if (!m.opensSecondBand())
-        return p.band ? m.updateCracked(*p.band, p.strain, d, options) : m.updateIntact(p.strain, d, size, p.band, options);
-      if (!p.band) return m.updateIntact(p.strain, d, size, p.band, p.secondBand, options);
-      std::optional<BandState> opened;
-      const UpdateResult r = m.updateCracked(*p.band, p.secondBand ? &*p.secondBand : nullptr, p.strain, d, size, opened, options);
-      if (opened) p.secondBand = opened;
-      return r;
+        return s.band ? m.updateCracked(*s.band, s.strain, d, options)
+                      : m.updateIntact(s.strain, d, size, opened.first, options);
+      return s.band ? m.updateCracked(*s.band, s.secondBand, s.strain, d, size, opened.second, options)
+                    : m.updateIntact(s.strain, d, size, opened.first, opened.second, options);
     }
-  };
-  return std::visit(Visitor{point, increment, size, options}, model_);
+  }
+  return {};
+}
+
+UpdateResult Material::update(PointState s, const Voigt& d, const EffectiveSize& size, OpenedBands& opened,
+                              const UpdateOptions& options) const {
+  UpdateResult r = updateOnce(s, d, size, opened, options);
+  if (r.status != UpdateStatus::NotConverged) return r;
+  // 2^level equal sub-steps on a copy of the state, committed only if every one converges.
+  for (int level = 1; level <= options.substepLevels; ++level) {
+    const int n = 1 << level;
+    const Voigt sub = d / n;
+    Voigt strain = s.strain;
+    double integrity = s.integrity ? *s.integrity : 1.0;
+    std::optional<BandState> band, second;
+    if (s.band) band = *s.band;
+    if (s.secondBand) second = *s.secondBand;
+    double dissipation = 0.0;
+    bool ok = true, released = false;
+    for (int i = 0; i < n && ok; ++i) {
+      OpenedBands o;
+      r = updateOnce({strain, s.integrity ? &integrity : nullptr, band ? &*band : nullptr, second ? &*second : nullptr},
+                     sub, size, o, options);
+      if (o.first) band = o.first;
+      if (o.second) second = o.second;
+      ok = r.converged();
+      dissipation += r.dissipation;
+      released = released || r.released;
+    }
+    r.substeps = n;
+    if (!ok) continue;
+    s.strain = strain;
+    if (s.integrity) *s.integrity = integrity;
+    if (s.band)
+      *s.band = *band;
+    else
+      opened.first = band;
+    if (s.secondBand)
+      *s.secondBand = *second;
+    else
+      opened.second = second;
+    r.dissipation = dissipation;
+    r.released = released;
+    return r;
+  }
+  return r;
+}
+
+UpdateResult Material::update(MaterialPoint& point, const Voigt& d, const EffectiveSize& size,
+                              const UpdateOptions& options) const {
+  OpenedBands opened;
+  const UpdateResult r =
+      update({point.strain, &point.integrity, point.band ? &*point.band : nullptr,
+              point.secondBand ? &*point.secondBand : nullptr},
+             d, size, opened, options);
+  if (opened.first) point.band = opened.first;
+  if (opened.second) point.secondBand = opened.second;
+  return r;
+}
+
+std::string Material::explain(const UpdateResult& r) const {
+  std::ostringstream msg;
+  msg.precision(10);
+  msg << "material update " << toString(r.status);
+  if (r.status == UpdateStatus::SizeTooSmall) {
+    const int bands = params_.secondBand == SecondBandOption::Off ? 1 : 2;
+    msg << ": a band cannot open here, " << effectiveSizeProblem(r.refusedSize, params_.bandWidth, bands);
+    return msg.str();
+  }
+  if (r.substeps > 1) msg << " after " << r.substeps << " sub-steps";
+  msg << ", residual " << r.residual << " MPa";
+  if (r.status == UpdateStatus::SnapBack) msg << " (snap_back: stop; release lets the band fail onto its stable branch)";
+  return msg.str();
 }
 
 Voigt Material::stress(const MaterialPoint& point) const {

@@ -1,5 +1,8 @@
 #pragma once
-// One material of a scene: which model, its parameters, and a uniform update over the models.
+// One material of a scene: which model, its parameters, and the one material-point update that
+// every caller uses (the MPM's stress phase, the point driver's mixed control): the model
+// dispatch, sub-stepping of an update that does not converge, the snap-back policy
+// (UpdateOptions), and a band that cannot open in its effective size as a status.
 // Built from an already-validated parameter struct (the YAML edge lives in io/).
 #include <optional>
 #include <string>
@@ -43,11 +46,50 @@ struct MaterialPoint {
   double damage() const { return band ? band->damage() : 1.0 - integrity; }
 };
 
+// A view of one point's state wherever its parts are stored: a MaterialPoint, or the MPM's
+// particle arrays with the band states in side arrays.
+struct PointState {
+  Voigt& strain;
+  double* integrity = nullptr;       // SmearedCrack: x = 1 - D of the point (nullptr for other models)
+  BandState* band = nullptr;         // Enriched: nullptr while intact
+  BandState* secondBand = nullptr;   // Enriched with the second-band option: nullptr while it has none
+};
+
+// The bands a point opened in an update, for the caller to store.
+struct OpenedBands {
+  std::optional<BandState> first, second;
+  bool any() const { return first || second; }
+};
+
 class Material {
  public:
   explicit Material(const MaterialParams& p);
+
+  // The material-point update. On Converged the state is committed (new bands in `opened`);
+  // otherwise it is unchanged. A NotConverged update is retried in 2, 4, ... 2^levels equal
+  // sub-steps (options.substepLevels), all of one size committed together or none; a snap-back
+  // or a refused size is a property of the path, not of the step, and is not sub-stepped.
+  UpdateResult update(PointState state, const Voigt& strainIncrement, const EffectiveSize& size, OpenedBands& opened,
+                      const UpdateOptions& options) const;
+  // The same on a MaterialPoint (its bands stored in place).
   UpdateResult update(MaterialPoint& point, const Voigt& strainIncrement, const EffectiveSize& size,
                       const UpdateOptions& options = {}) const;
+  // The closed-form stress, where there is one: an elastic point, or an intact enriched point
+  // that cannot reach onset (TwoPhasePoint::surelyIntact), with a finite stress. Then strain and
+  // stress are updated and it returns true; otherwise nothing changes (the caller takes update()).
+  // Inline: the explicit MPM calls it for nearly every point of every step.
+  bool closedFormStress(const Voigt& increment, bool cracked, Voigt& strain, Voigt& stress) const {
+    if (params_.model == ModelKind::SmearedCrack || (params_.model == ModelKind::Enriched && cracked)) return false;
+    const Voigt end = strain + increment;
+    const Voigt s = stiffness_ * end;  // Eq. (4) with no band
+    if (!s.allFinite() || (params_.model == ModelKind::Enriched && !std::get_if<TwoPhasePoint>(&model_)->surelyIntact(s)))
+      return false;
+    strain = end;
+    stress = s;
+    return true;
+  }
+  // Why an update failed, in words (status, residual, the refused size and its bound).
+  std::string explain(const UpdateResult& failed) const;
   // Stress of a point without changing it (for output and restarts).
   Voigt stress(const MaterialPoint& point) const;
   const MaterialParams& params() const { return params_; }
@@ -56,6 +98,9 @@ class Material {
   const SmearedCrack* smeared() const { return std::get_if<SmearedCrack>(&model_); }
 
  private:
+  UpdateResult updateOnce(PointState state, const Voigt& strainIncrement, const EffectiveSize& size,
+                          OpenedBands& opened, const UpdateOptions& options) const;
+
   MaterialParams params_;
   Tangent stiffness_;
   std::variant<LinearElastic, SmearedCrack, TwoPhasePoint> model_;

@@ -7,12 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <vector>
 
 #include "material/driving_force.hpp"
 #include "material/two_phase_point.hpp"
-#include "material/parameter_check.hpp"
 
 namespace ecm {
 
@@ -41,17 +39,7 @@ BandState TwoPhasePoint::openSecondBand(const BandState& first, const Voigt& str
   const double f1 = first.volumeFraction;
   const Voigt firstBandStrain = first.onsetStrain + jumpToStrain(first.crackNormal) * first.jump / bandWidth_;  // Eq. (3)
   b.onsetStrain = (strain - f1 * firstBandStrain) / (1.0 - f1);  // eps_L2 = eps_b of Eq. (2): sigma continuous
-  const double effectiveSize = size(b.crackNormal);
-  b.volumeFraction = bandWidth_ / effectiveSize;  // Eq. (1) for the second band's normal
-  const double bulk = 1.0 - f1 - b.volumeFraction;
-  if (!(bulk >= kMinimumSizeMargin / (1.0 + kMinimumSizeMargin))) {
-    std::ostringstream msg;
-    msg.precision(10);
-    msg << "second band: f1 + f2 = " << f1 + b.volumeFraction << " leaves a bulk fraction 1 - f1 - f2 = " << bulk
-        << " (H = " << effectiveSize << " mm for h = " << bandWidth_
-        << " mm); two bands need H >= 2 h (1 + 1e-6) (docs/model.md)";
-    throw ParameterError(msg.str());
-  }
+  b.volumeFraction = bandWidth_ / size(b.crackNormal);  // Eq. (1) for the second band's normal
   return b;
 }
 
@@ -387,6 +375,15 @@ UpdateResult TwoPhasePoint::updateCracked(BandState& first, BandState* second, V
     alpha = b;
   }
   BandState opened = openSecondBand(hi.band, hi.strain, size);
+  // Both bands need a bulk: 1 - f1 - f2 >= 1e-6 / (1 + 1e-6), i.e. H >= 2 h (1 + 1e-6) for equal sizes.
+  if (!(1.0 - hi.band.volumeFraction - opened.volumeFraction >= kMinimumSizeMargin / (1.0 + kMinimumSizeMargin))) {
+    first = startBand;
+    strain = startStrain;
+    UpdateResult refused;
+    refused.status = UpdateStatus::SizeTooSmall;
+    refused.refusedSize = bandWidth_ / std::max(hi.band.volumeFraction, opened.volumeFraction);  // the smaller H
+    return refused;
+  }
   BandState band = hi.band;
   Voigt s = hi.strain;
   UpdateResult rest = updateTwoBands(band, opened, s, (1.0 - alpha) * increment, options);

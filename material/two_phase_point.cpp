@@ -418,8 +418,11 @@ UpdateResult TwoPhasePoint::updateIntactSlow(Voigt& strain, const Voigt& increme
   b.onsetStrain = strain + *alpha * increment;
   b.crackNormal = canonicalNormal(principalStresses(stiffness() * b.onsetStrain).firstDirection);
   const double effectiveSize = size(b.crackNormal);
-  if (const std::string problem = effectiveSizeProblem(effectiveSize, bandWidth_); !problem.empty())
-    throw ParameterError("effective size " + problem);
+  if (!(effectiveSize >= minimumEffectiveSize(bandWidth_))) {  // H <= h leaves no bulk (docs/model.md)
+    r.status = UpdateStatus::SizeTooSmall;
+    r.refusedSize = effectiveSize;
+    return r;
+  }
   b.volumeFraction = bandWidth_ / effectiveSize;  // Eq. (1)
   Voigt cracked = b.onsetStrain;
   r = secondOnset ? updateCracked(b, nullptr, cracked, (1.0 - *alpha) * increment, size, *secondOnset, options)

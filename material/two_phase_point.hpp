@@ -89,6 +89,9 @@ struct UpdateOptions {
   // its strain. A state is then stable only if the consistent tangent's block of these
   // components is positive definite as well as K of Eq. (9) (docs/model.md).
   unsigned stressControlled = 0;
+  // A NotConverged update is retried in 2, 4, ... 2^substepLevels equal sub-steps (0: never).
+  // Only Material::update sub-steps (material/material.hpp); the TwoPhasePoint calls ignore it.
+  int substepLevels = 0;
   UpdateOptions() = default;
   UpdateOptions(SnapBackPolicy policy, bool withTangent = true) : snapBack(policy), tangent(withTangent) {}  // NOLINT: implicit
 };
@@ -144,8 +147,8 @@ class TwoPhasePoint {
   double tangentialStress(const BandState& first, const Voigt& stress) const;
   double secondBandOnsetStress() const { return secondOnsetStress_; }
   // A second band opening at the converged one-band state (first, strain): normal t1, no jump,
-  // eps_L2 = the bulk strain (the stress stays continuous), f2 = h / H(t1). Throws ParameterError
-  // where 1 - f1 - f2 would leave the bulk thinner than the smallest size allows.
+  // eps_L2 = the bulk strain (the stress stays continuous), f2 = h / H(t1). The cracked update
+  // refuses it (UpdateStatus::SizeTooSmall) where 1 - f1 - f2 leaves no bulk.
   BandState openSecondBand(const BandState& first, const Voigt& strain, const EffectiveSize& size) const;
   // Pure evaluation of both bands and the bulk at trial jumps, each band on its own surface.
   TwoBandEquilibrium equilibrium(const BandState& first, const BandState& second,

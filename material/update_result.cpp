@@ -7,6 +7,7 @@ const char* toString(UpdateStatus s) {
     case UpdateStatus::Converged: return "converged";
     case UpdateStatus::NotConverged: return "not converged";
     case UpdateStatus::SnapBack: return "snap-back";
+    case UpdateStatus::SizeTooSmall: return "effective size too small";
   }
   return "?";
 }

@@ -1,5 +1,5 @@
 // The USL step in one pass over the particles (Solver::advance): each point gathers from the
-// updated grid, moves, takes its closed-form stress (stress_update.hpp), locates its new stencil
+// updated grid, moves, takes its closed-form stress (Material::closedFormStress), locates its new stencil
 // and scatters its mass, momentum and force into the next step's grid at once, while its fields
 // are in cache. Separate transfers read every particle twice per step, and the step is bound
 // by memory traffic, not arithmetic.
@@ -15,7 +15,6 @@
 #include <algorithm>
 
 #include "mpm/solver.hpp"
-#include "mpm/stress_update.hpp"
 #include "mpm/transfer_kernels.hpp"
 
 namespace ecm::mpm {
@@ -43,7 +42,7 @@ TransferSetup setupOf(const Scene& scene, const Vec2& invCell, const Vec2& halfW
 
 template <ShapeFunction F>
 PartOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid, Particles& p, std::size_t begin,
-                                std::size_t end, double dt, double flip, const MaterialKernel* kernels,
+                                std::size_t end, double dt, double flip, const Material* materials,
                                 ScatterTarget out, std::vector<std::uint32_t>& deferred) {
   const int nx = t.grid.nodesX();
   const double pic = 1.0 - flip;
@@ -62,7 +61,7 @@ PartOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid, 
     }
     const Voigt d = detail::strainIncrement(at, dt);
     Voigt sig;  // the closed-form stress, kept in registers for the scatter below
-    const bool closedForm = closedFormStress(kernels[p.material[i]], d, p.band[i], p.strain[i], sig);
+    const bool closedForm = materials[p.material[i]].closedFormStress(d, p.band[i] >= 0, p.strain[i], sig);
     if (!closedForm) {
       p.strainIncrement[i] = d;
       deferred.push_back(static_cast<std::uint32_t>(i));
@@ -115,7 +114,7 @@ std::size_t scatterInOrder(const TransferSetup& t, Particles& p, std::size_t beg
 }
 
 using FusedFn = PartOutcome (*)(const TransferSetup&, const GridFields&, Particles&, std::size_t, std::size_t, double,
-                                double, const MaterialKernel*, ScatterTarget, std::vector<std::uint32_t>&);
+                                double, const Material*, ScatterTarget, std::vector<std::uint32_t>&);
 using OrderedFn = std::size_t (*)(const TransferSetup&, Particles&, std::size_t, std::size_t, const std::uint32_t*,
                                   const std::uint32_t*, ScatterTarget, detail::BaseSpan&);
 
@@ -185,7 +184,7 @@ void Solver::gatherStressScatter() {
     std::vector<std::uint32_t>& mine = deferredPerThread_[static_cast<std::size_t>(t)];
     mine.clear();
     const auto [b, e] = detail::partRange(count, t, threads_);
-    const PartOutcome o = fn(tr, grid_, particles_, b, e, dt_, scene_.solver.flip, kernels_.data(), target, mine);
+    const PartOutcome o = fn(tr, grid_, particles_, b, e, dt_, scene_.solver.flip, materials_.data(), target, mine);
     notFinite = std::min(notFinite, o.notFinite);
     leftGrid = leftGrid || o.leftGrid;
     spans_[static_cast<std::size_t>(t)] = {o.span.lo, o.span.hi};

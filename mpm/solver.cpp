@@ -26,9 +26,8 @@ Solver::Solver(Scene scene, int threads)
   for (auto& s : scratch_) s.resize(g.nodeCount());
   touched_.assign(scratch_.size(), {0, g.nodeCount()});
 
-  materials_.reserve(scene_.materials.size());  // kernels_ point into materials_: no reallocation after this
+  materials_.reserve(scene_.materials.size());
   for (const auto& m : scene_.materials) materials_.emplace_back(m);
-  for (const auto& m : materials_) kernels_.push_back({m.params().model, m.stiffness(), m.enriched(), m.smeared()});
 
   // dt = cfl * min cell size / the largest P-wave speed sqrt(a_11 / rho) of the materials present.
   std::vector<bool> used(materials_.size(), false);

@@ -46,14 +46,6 @@ struct Energies {
   double damping = 0.0;       // removed by local and viscous damping
 };
 
-// Per material, what the stress update needs without a virtual call.
-struct MaterialKernel {
-  ModelKind kind = ModelKind::LinearElastic;
-  Tangent stiffness = Tangent::Zero();
-  const TwoPhasePoint* enriched = nullptr;
-  const SmearedCrack* smeared = nullptr;
-};
-
 class Solver {
  public:
   // Validates the scene and seeds the particles. threads > 0: exactly that many; 0: automatic,
@@ -126,7 +118,6 @@ class Solver {
   GridFields grid_;
   std::vector<GridAccumulator> scratch_;  // one per extra thread
   std::vector<Material> materials_;
-  std::vector<MaterialKernel> kernels_;
   std::vector<std::uint32_t> deferred_;  // USL: particles left to updateStresses, in index order
   std::vector<std::vector<std::uint32_t>> deferredPerThread_;
   std::vector<ConditionState> conditions_;

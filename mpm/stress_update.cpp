@@ -1,7 +1,7 @@
 // The stress phase: every particle's material update with its strain increment (or, after the
 // fused USL transfer, only the particles it deferred). Elastic and intact points far from onset
-// take the closed form (stress_update.hpp); enriched points call updateIntact / updateCracked on
-// the side array of band states; failed updates are retried with 2, 4, ... sub-steps.
+// take the closed form (Material::closedFormStress); the others take Material::update on a view
+// of the particle's arrays (band states in side arrays), which also sub-steps failed updates.
 #include <omp.h>
 
 #include <algorithm>
@@ -10,7 +10,6 @@
 #include <sstream>
 
 #include "mpm/solver.hpp"
-#include "mpm/stress_update.hpp"
 
 namespace ecm::mpm {
 
@@ -19,66 +18,13 @@ namespace {
 // Bands opened in this step, added to the side arrays after the parallel loop.
 struct Onset {
   std::size_t particle;
-  std::optional<BandState> first, second;
+  OpenedBands bands;
 };
 
 struct Failure {
   std::size_t particle = std::numeric_limits<std::size_t>::max();
   UpdateResult result;
-  std::string what;  // an exception from the material (e.g. H <= h at onset)
 };
-
-// One update of an enriched point from its bands (nullptr: not opened yet); new bands go to
-// `onset` / `secondOnset`. Without the second-band option the point has at most one band.
-UpdateResult updateOnce(const TwoPhasePoint& m, Voigt& strain, BandState* band, BandState* second, const Voigt& d,
-                        const EffectiveSize& size, std::optional<BandState>& onset, std::optional<BandState>& secondOnset,
-                        UpdateOptions options) {
-  if (!m.opensSecondBand())
-    return band ? m.updateCracked(*band, strain, d, options) : m.updateIntact(strain, d, size, onset, options);
-  return band ? m.updateCracked(*band, second, strain, d, size, secondOnset, options)
-              : m.updateIntact(strain, d, size, onset, secondOnset, options);
-}
-
-// One enriched point: the increment in one go, else in 2^level equal sub-steps.
-UpdateResult updateEnriched(const TwoPhasePoint& m, Voigt& strain, BandState* band, BandState* second, const Voigt& d,
-                            const EffectiveSize& size, Onset& opened, int levels, UpdateOptions options, long& retries) {
-  UpdateResult r = updateOnce(m, strain, band, second, d, size, opened.first, opened.second, options);
-  if (r.converged()) return r;
-  ++retries;
-  for (int level = 1; level <= levels; ++level) {
-    const int n = 1 << level;
-    const Voigt sub = d / n;
-    Voigt s = strain;
-    std::optional<BandState> b, b2;
-    if (band) b = *band;
-    if (second) b2 = *second;
-    double dissipation = 0.0;
-    bool ok = true, released = false;
-    for (int i = 0; i < n && ok; ++i) {
-      std::optional<BandState> newFirst, newSecond;
-      r = updateOnce(m, s, b ? &*b : nullptr, b2 ? &*b2 : nullptr, sub, size, newFirst, newSecond, options);
-      if (newFirst) b = newFirst;
-      if (newSecond) b2 = newSecond;
-      ok = r.converged();
-      dissipation += r.dissipation;
-      released = released || r.released;
-    }
-    if (!ok) continue;
-    strain = s;
-    if (band)
-      *band = *b;
-    else
-      opened.first = b;
-    if (second)
-      *second = *b2;
-    else
-      opened.second = b2;
-    r.dissipation = dissipation;
-    r.released = released;
-    return r;
-  }
-  return r;
-}
 
 }  // namespace
 
@@ -88,7 +34,6 @@ void Solver::updateStresses(bool deferredOnly) {
   // Positions j = 0 .. count - 1 in the list of particles to update (all, or the deferred ones).
   const std::size_t count = deferredOnly ? deferred_.size() : p.size();
   const std::uint32_t* list = deferredOnly ? deferred_.data() : nullptr;
-  const int levels = scene_.solver.substepLevels;
   // Dissipation summed per chunk in particle order (a local sum, stored once: a shared
   // per-particle accumulator put two threads on one cache line and cost half the step), then
   // over the chunks in order: the same bits for any thread count and schedule.
@@ -97,7 +42,8 @@ void Solver::updateStresses(bool deferredOnly) {
   const std::size_t chunks = (count + kChunk - 1) / kChunk;
   std::vector<double> chunkDissipation(chunks, 0.0);
   long retries = 0, released = 0;
-  const UpdateOptions options{scene_.solver.snapBack, false};  // explicit: no tangent needed
+  UpdateOptions options{scene_.solver.snapBack, false};  // explicit: no tangent needed
+  options.substepLevels = scene_.solver.substepLevels;
   Failure failure;
   std::vector<std::vector<Onset>> onsets(static_cast<std::size_t>(threads_));
 #pragma omp parallel num_threads(threads_) reduction(+ : retries, released)
@@ -111,53 +57,29 @@ void Solver::updateStresses(bool deferredOnly) {
       const std::size_t end = std::min(count, (c + 1) * kChunk);
       for (std::size_t j = c * kChunk; j < end; ++j) {
         const std::size_t i = list ? list[j] : j;
-        const MaterialKernel& k = kernels_[p.material[i]];
+        const Material& m = materials_[p.material[i]];
         const Voigt& d = p.strainIncrement[i];
+        const std::int32_t bi = p.band[i];
         // (the fused USL pass has tried the closed form on its deferred points already)
-        if (!deferredOnly && closedFormStress(k, d, p.band[i], p.strain[i], p.stress[i])) continue;
-        UpdateResult r;
-        std::string what;
-        switch (k.kind) {
-          case ModelKind::LinearElastic:  // a non-finite stress (closedFormStress refused it): reported below
-            p.strain[i] += d;
-            p.stress[i] = k.stiffness * p.strain[i];
-            break;
-          case ModelKind::SmearedCrack: {
-            SmearedCrack::State s{p.strain[i], p.integrity[i]};
-            r = k.smeared->update(s, d);
-            p.strain[i] = s.strain;
-            p.integrity[i] = s.integrity;
-            p.stress[i] = r.stress;
-            chunkSum += r.dissipation * p.volume[i];
-            break;
-          }
-          case ModelKind::Enriched: {
-            const std::int32_t bi = p.band[i];
-            const std::int32_t b2 = p.secondBand.empty() ? -1 : p.secondBand[i];
-            Onset onset{i, std::nullopt, std::nullopt};
-            try {
-              r = updateEnriched(*k.enriched, p.strain[i], bi >= 0 ? &p.bands[static_cast<std::size_t>(bi)] : nullptr,
-                                 b2 >= 0 ? &p.secondBands[static_cast<std::size_t>(b2)] : nullptr, d, size_, onset,
-                                 levels, options, retries);
-            } catch (const std::exception& ex) {
-              r.status = UpdateStatus::NotConverged;
-              what = ex.what();
-            }
-            if (r.converged()) {
-              p.stress[i] = r.stress;
-              if (r.dissipation != 0.0) chunkSum += r.dissipation * p.volume[i];
-              released += r.released ? 1 : 0;
-              if (onset.first || onset.second) mine.push_back(onset);
-            }
-            break;
-          }
+        if (!deferredOnly && m.closedFormStress(d, bi >= 0, p.strain[i], p.stress[i])) continue;
+        const std::int32_t b2 = p.secondBand.empty() ? -1 : p.secondBand[i];
+        Onset onset{i, {}};
+        const UpdateResult r = m.update({p.strain[i], p.integrity.empty() ? nullptr : &p.integrity[i],
+                                         bi >= 0 ? &p.bands[static_cast<std::size_t>(bi)] : nullptr,
+                                         b2 >= 0 ? &p.secondBands[static_cast<std::size_t>(b2)] : nullptr},
+                                        d, size_, onset.bands, options);
+        if (r.converged()) {
+          p.stress[i] = r.stress;
+          if (r.dissipation != 0.0) chunkSum += r.dissipation * p.volume[i];
+          released += r.released ? 1 : 0;
+          retries += r.substeps > 1 ? 1 : 0;
+          if (onset.bands.any()) mine.push_back(onset);
         }
         if (!r.converged() || !p.stress[i].allFinite()) {
 #pragma omp critical(ecm_mpm_failure)
           if (i < failure.particle) {
             failure.particle = i;
             failure.result = r;
-            failure.what = what;
           }
         }
       }
@@ -169,13 +91,13 @@ void Solver::updateStresses(bool deferredOnly) {
   for (auto& o : onsets) all.insert(all.end(), o.begin(), o.end());
   std::sort(all.begin(), all.end(), [](const Onset& a, const Onset& b) { return a.particle < b.particle; });
   for (const Onset& o : all) {
-    if (o.first) {
+    if (o.bands.first) {
       p.band[o.particle] = static_cast<std::int32_t>(p.bands.size());
-      p.bands.push_back(*o.first);
+      p.bands.push_back(*o.bands.first);
     }
-    if (o.second) {
+    if (o.bands.second) {
       p.secondBand[o.particle] = static_cast<std::int32_t>(p.secondBands.size());
-      p.secondBands.push_back(*o.second);
+      p.secondBands.push_back(*o.bands.second);
     }
   }
   // Every 64 steps the bands go back into particle order (decided from the state and the step
@@ -196,9 +118,7 @@ void Solver::updateStresses(bool deferredOnly) {
       kind = FailureKind::NotFinite;
       msg << "non-finite stress";
     } else {
-      msg << "material update " << toString(failure.result.status) << " after " << (1 << levels)
-          << " sub-steps, residual " << failure.result.residual << " MPa";
-      if (!failure.what.empty()) msg << " (" << failure.what << ")";
+      msg << materials_[p.material[i]].explain(failure.result);
       // The full state, to reproduce the update outside the run (material/two_phase_point.hpp).
       msg.precision(17);
       const auto v = [&](const auto& x) {

@@ -9,7 +9,6 @@
 #include <sstream>
 
 #include "mpm/solver.hpp"
-#include "mpm/stress_update.hpp"
 #include "mpm/transfer_kernels.hpp"
 
 namespace ecm::mpm {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "driver/point_driver.hpp"
+#include "io/value_error.hpp"
 #include "../paper_constants.hpp"
 #include "material/uniaxial_closed_form.hpp"
 
@@ -189,7 +190,8 @@ TEST(PointSweep, AnEffectiveSizeBelowTheBoundIsRefusedBeforeRunning) {
   try {
     runPoint(sweepScene(c));
     FAIL() << "expected a refusal";
-  } catch (const ParameterError& e) {
+  } catch (const io::ValueError& e) {
+    EXPECT_EQ(e.key, "effective_size");
     EXPECT_NE(std::string(e.what()).find("0.05000005"), std::string::npos) << e.what();
   }
 }

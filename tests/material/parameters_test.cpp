@@ -54,8 +54,13 @@ TEST(Parameters, EffectiveSizeMustExceedTheBandWidth) {
   // Eq. (1): f = h / H must lie in (0, 1).
   const Material m(concrete());
   MaterialPoint point;
-  EXPECT_THROW(m.update(point, Voigt(1e-3, 0.0, 0.0), EffectiveSize::fixed(test::kBandWidth)), ParameterError);
+  const UpdateResult r = m.update(point, Voigt(1e-3, 0.0, 0.0), EffectiveSize::fixed(test::kBandWidth));
+  EXPECT_EQ(r.status, UpdateStatus::SizeTooSmall);
+  EXPECT_EQ(r.refusedSize, test::kBandWidth);
   EXPECT_FALSE(point.band);
+  EXPECT_EQ(point.strain, Voigt::Zero()) << "a refused update leaves the state unchanged";
+  // The bound h (1 + 1e-6) = 0.05000005 mm in the message (docs/model.md).
+  EXPECT_NE(m.explain(r).find("0.05000005"), std::string::npos) << m.explain(r);
 }
 
 }  // namespace
