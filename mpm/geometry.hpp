@@ -43,6 +43,7 @@ struct Body {
   int material = 0;                       // index into Scene::materials
   bool subtract = false;
   Vec2 initialVelocity = Vec2::Zero();    // mm/s
+  int item = -1;  // its item in a scene file's bodies list (for messages); -1: built in code
 };
 
 }  // namespace ecm::mpm

@@ -1,7 +1,10 @@
 #include "mpm/scene.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
+
+#include "io/value_error.hpp"
 
 namespace ecm::mpm {
 
@@ -15,76 +18,158 @@ const char* toString(UpdateScheme s) {
 }
 
 namespace {
-[[noreturn]] void fail(const std::string& what) { throw std::invalid_argument(what); }
 
-void checkHistory(const TimeFunction& h, const std::string& where) {
+using io::ValueError;
+
+std::string item(const char* list, std::size_t i) { return std::string(list) + "[" + std::to_string(i) + "]"; }
+
+// A check of a part that throws std::invalid_argument (grid, shape, time function), as a ValueError at `key`.
+template <class F>
+void check(const std::string& key, F&& f) {
   try {
-    h.validate();
+    f();
+  } catch (const ValueError&) {
+    throw;
   } catch (const std::invalid_argument& e) {
-    fail(where + ": " + e.what());
+    throw ValueError(key, e.what());
   }
 }
+
+void requireRange(const std::string& key, double v, double lo, double hi, bool loClosed, bool hiClosed) {
+  const bool ok = std::isfinite(v) && (loClosed ? v >= lo : v > lo) && (hiClosed ? v <= hi : v < hi);
+  if (ok) return;
+  std::ostringstream msg;
+  msg.precision(10);
+  msg << v << " is outside the allowed range " << (loClosed ? "[" : "(") << lo << ", " << hi << (hiClosed ? "]" : ")");
+  throw ValueError(key, msg.str());
+}
+
+void validateMaterials(const Scene& s) {
+  if (s.materials.empty()) throw ValueError("materials", "needs at least one material");
+  if (s.materials.size() > 255) throw ValueError("materials", "at most 255 materials");
+  // The grid's cells set H (the solver's effective_size rule): its smallest value must be one
+  // the enriched point accepts.
+  const EffectiveSize cellSize{s.solver.effectiveSize, 0.0, s.grid.cellSize[0], s.grid.cellSize[1]};
+  for (std::size_t i = 0; i < s.materials.size(); ++i) {
+    const MaterialParams& m = s.materials[i];
+    const std::string key = item("materials", i);
+    check(key, [&] { m.validate(); });
+    if (!(m.density > 0.0)) throw ValueError(key, "material '" + m.name + "': MPM needs density > 0 (t/mm^3)");
+    if (m.elastic.hypothesis != s.materials.front().elastic.hypothesis)
+      throw ValueError(key, "material '" + m.name + "': all materials must share plane_stress or plane_strain");
+    for (std::size_t j = 0; j < i; ++j)
+      if (s.materials[j].name == m.name) throw ValueError(key, "material name '" + m.name + "' is defined twice");
+    if (m.model == ModelKind::Enriched)
+      if (const std::string problem =
+              effectiveSizeProblem(cellSize.smallest(), m.bandWidth, m.secondBand == SecondBandOption::Off ? 1 : 2);
+          !problem.empty())
+        throw ValueError(key, "material '" + m.name + "' on this grid: the cells' " + problem);
+  }
+}
+
+void validateBodies(const Scene& s) {
+  if (s.bodies.empty()) throw ValueError("bodies", "needs at least one body");
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    const Body& b = s.bodies[i];
+    const std::string key = b.item >= 0 ? item("bodies", static_cast<std::size_t>(b.item)) : item("bodies", i);
+    check(key, [&] { b.shape.validate(); });
+    if (!b.subtract && (b.material < 0 || b.material >= static_cast<int>(s.materials.size())))
+      throw ValueError(key, "material index " + std::to_string(b.material) + " out of range");
+    if (!b.initialVelocity.allFinite()) throw ValueError(key + ".initial_velocity", "must be finite");
+  }
+}
+
+void validateSolver(const Scene& s) {
+  const SolverSettings& v = s.solver;
+  requireRange("particles_per_cell", s.particlesPerCell, 1.0, 8.0, true, true);
+  requireRange("solver.flip", v.flip, 0.0, 1.0, true, true);
+  requireRange("solver.cfl", v.cfl, 0.0, 1.0, false, true);  // beyond 1 the explicit step is unstable
+  requireRange("solver.local_damping", v.damping.local, 0.0, 1.0, true, false);
+  requireRange("solver.viscous_damping", v.damping.viscous, 0.0, INFINITY, true, false);
+  if (!v.gravity.allFinite()) throw ValueError("solver.gravity", "must be finite");
+  if (v.effectiveSize == EffectiveSizeRule::Fixed) throw ValueError("solver.effective_size", "must be sqrt or oriented");
+  requireRange("solver.substep_levels", v.substepLevels, 0.0, 12.0, true, true);
+  if (v.shapeFunction == ShapeFunction::UGimp && (s.grid.cellsX < 2 || s.grid.cellsY < 2))
+    throw ValueError("solver.shape_function", "uGIMP needs at least 2 cells in x and y");
+}
+
+void validateOutput(const Scene& s) {
+  requireRange("end_time", s.endTime, 0.0, INFINITY, false, false);
+  requireRange("output_interval", s.outputInterval, 0.0, INFINITY, true, false);
+  if (s.snapshotEvery < 1) throw ValueError("snapshot_every", "must be >= 1");
+  for (std::size_t i = 0; i < s.particleSnapshots.size(); ++i) {
+    requireRange(item("particle_snapshots", i), s.particleSnapshots[i], 0.0, INFINITY, false, false);
+    if (i > 0 && !(s.particleSnapshots[i] > s.particleSnapshots[i - 1]))
+      throw ValueError("particle_snapshots", "times must increase");
+    if (s.particleSnapshots[i] > s.endTime) throw ValueError("particle_snapshots", "a time after end_time");
+  }
+  if (s.checkpoint.everySteps < 0 || s.checkpoint.everySteps > 2147483647L)
+    throw ValueError("checkpoint.every_steps", "must be >= 1 (0: off)");
+  requireRange("checkpoint.every_minutes", s.checkpoint.everyMinutes, 0.0, INFINITY, true, false);
+  if (s.stopWhen) {
+    const StopWhen& w = *s.stopWhen;
+    if (!findCondition(s.conditions, w.condition))
+      throw ValueError("stop_when.condition", "no condition is named '" + w.condition + "'");
+    requireRange("stop_when.load_below", w.loadBelow, 0.0, 1.0, false, false);
+    requireRange("stop_when.after_time", w.afterTime, 0.0, INFINITY, true, false);
+    if (!(w.afterTime < s.endTime))
+      throw ValueError("stop_when", "after_time is not before end_time: it would never stop the run");
+    if (!(s.outputInterval > 0.0)) throw ValueError("stop_when", "is checked at the output rows: needs output_interval > 0");
+  }
+}
+
+void validateBox(const std::string& key, const Box& b) {
+  if (!(b.min.allFinite() && b.max.allFinite())) throw ValueError(key, "must be finite");
+  if (!(b.max[0] >= b.min[0] && b.max[1] >= b.min[1])) throw ValueError(key, "box needs max >= min in x and y");
+}
+
+void validateConditions(const Scene& s) {
+  const Grid& g = s.grid;
+  for (std::size_t i = 0; i < s.conditions.size(); ++i) {
+    const NodeCondition& c = s.conditions[i];
+    const std::string key = item("conditions", i);
+    validateBox(key + ".box", c.box);
+    bool any = false;
+    const double tol = 1e-9 * std::min(g.cellSize[0], g.cellSize[1]);
+    for (int n = 0; n < g.nodeCount() && !any; ++n) any = c.box.contains(g.nodePosition(n), tol);
+    if (!any) throw ValueError(key + ".box", "contains no grid node");
+    for (int d = 0; d < 2; ++d) {
+      const ComponentCondition& k = c.component[static_cast<std::size_t>(d)];
+      if (k.kind != Prescribed::Velocity && k.kind != Prescribed::Displacement) continue;
+      const std::string what = k.kind == Prescribed::Velocity ? ".velocity." : ".displacement.";
+      check(key + what + (d ? "y" : "x"), [&] { k.history.validate(); });
+    }
+    if (c.field) {
+      if (c.component[0].kind != Prescribed::Free || c.component[1].kind != Prescribed::Free)
+        throw ValueError(key + ".velocity_field", "cannot be combined with fixed, velocity or displacement");
+      check(key + ".velocity_field.scale", [&] { c.field->scale.validate(); });
+      if (!c.field->gradient.allFinite()) throw ValueError(key + ".velocity_field.gradient", "must be finite");
+      if (!c.field->origin.allFinite()) throw ValueError(key + ".velocity_field.origin", "must be finite");
+    }
+    if (!c.field && c.component[0].kind == Prescribed::Free && c.component[1].kind == Prescribed::Free)
+      throw ValueError(key, "condition '" + c.name + "' prescribes nothing (give fixed, velocity, displacement or velocity_field)");
+  }
+  for (std::size_t i = 0; i < s.loads.size(); ++i) {
+    const Load& l = s.loads[i];
+    const std::string key = item("loads", i);
+    validateBox(key + ".box", l.box);
+    if (!l.force.allFinite()) throw ValueError(key + ".force", "must be finite");
+    check(key + ".history", [&] { l.history.validate(); });
+  }
+}
+
 }  // namespace
 
+// The one check of a scene's values (the YAML reader checks only the form of the file and
+// reports these at their lines, mpm/scene_yaml.cpp).
 void Scene::validate() const {
-  grid.validate();
-  if (!(thickness > 0.0)) fail("thickness must be > 0 mm");
-  if (materials.empty()) fail("the scene has no materials");
-  if (materials.size() > 255) fail("at most 255 materials");
-  for (const auto& m : materials) {
-    m.validate();
-    if (!(m.density > 0.0)) fail("material '" + m.name + "': MPM needs density > 0 (t/mm^3)");
-    if (m.elastic.hypothesis != materials.front().elastic.hypothesis)
-      fail("material '" + m.name + "': all materials must share plane stress or plane strain");
-  }
-  if (bodies.empty()) fail("the scene has no bodies");
-  for (std::size_t i = 0; i < bodies.size(); ++i) {
-    const Body& b = bodies[i];
-    try {
-      b.shape.validate();
-    } catch (const std::invalid_argument& e) {
-      fail("body " + std::to_string(i) + ": " + e.what());
-    }
-    if (!b.subtract && (b.material < 0 || b.material >= static_cast<int>(materials.size())))
-      fail("body " + std::to_string(i) + ": material index " + std::to_string(b.material) + " out of range");
-    if (!b.initialVelocity.allFinite()) fail("body " + std::to_string(i) + ": initial velocity must be finite");
-  }
-  if (particlesPerCell < 1 || particlesPerCell > 8) fail("particles per cell k must be in [1, 8]");
-  if (!(solver.cfl > 0.0 && solver.cfl <= 1.0))
-    fail("CFL number " + std::to_string(solver.cfl) + " outside (0, 1]: the explicit step would be unstable");
-  if (!(solver.flip >= 0.0 && solver.flip <= 1.0)) fail("PIC/FLIP blend must be in [0, 1]");
-  if (!(solver.damping.local >= 0.0 && solver.damping.local < 1.0)) fail("local damping must be in [0, 1)");
-  if (!(solver.damping.viscous >= 0.0 && std::isfinite(solver.damping.viscous))) fail("viscous damping must be >= 0 (1/s)");
-  if (!solver.gravity.allFinite()) fail("gravity must be finite");
-  if (solver.effectiveSize == EffectiveSizeRule::Fixed) fail("effective size rule must be sqrt or oriented");
-  if (solver.substepLevels < 0 || solver.substepLevels > 12) fail("sub-step levels must be in [0, 12]");
-  if (solver.shapeFunction == ShapeFunction::UGimp && (grid.cellsX < 2 || grid.cellsY < 2))
-    fail("uGIMP needs at least 2 cells in x and y");
-  if (!(endTime >= 0.0 && std::isfinite(endTime))) fail("end time must be >= 0 s");
-  if (!(outputInterval >= 0.0 && std::isfinite(outputInterval))) fail("output interval must be >= 0 s");
-  if (snapshotEvery < 1) fail("snapshot_every must be >= 1");
-  if (checkpoint.everySteps < 0) fail("checkpoint every_steps must be >= 1 (0: off)");
-  if (!(checkpoint.everyMinutes >= 0.0 && std::isfinite(checkpoint.everyMinutes)))
-    fail("checkpoint every_minutes must be > 0 (0: off)");
-  for (const auto& c : conditions) {
-    if (!(c.box.max[0] >= c.box.min[0] && c.box.max[1] >= c.box.min[1])) fail("condition '" + c.name + "': box needs max >= min");
-    for (const auto& k : c.component) checkHistory(k.history, "condition '" + c.name + "'");
-    if (c.field) {
-      checkHistory(c.field->scale, "condition '" + c.name + "'");
-      if (!c.field->gradient.allFinite()) fail("condition '" + c.name + "': velocity gradient must be finite");
-    }
-  }
-  if (stopWhen) {
-    if (!findCondition(conditions, stopWhen->condition)) fail("stop_when: no condition is named '" + stopWhen->condition + "'");
-    if (!(stopWhen->loadBelow > 0.0 && stopWhen->loadBelow < 1.0)) fail("stop_when: load_below must be in (0, 1)");
-    if (!(stopWhen->afterTime >= 0.0 && std::isfinite(stopWhen->afterTime))) fail("stop_when: after_time must be >= 0 s");
-    if (!(outputInterval > 0.0)) fail("stop_when is checked at the output rows: needs output_interval > 0");
-  }
-  for (const auto& l : loads) {
-    if (!(l.box.max[0] >= l.box.min[0] && l.box.max[1] >= l.box.min[1])) fail("load '" + l.name + "': box needs max >= min");
-    if (!l.force.allFinite()) fail("load '" + l.name + "': force must be finite");
-    checkHistory(l.history, "load '" + l.name + "'");
-  }
+  check("grid", [&] { grid.validate(); });
+  requireRange("thickness", thickness, 0.0, INFINITY, false, false);
+  validateMaterials(*this);
+  validateBodies(*this);
+  validateSolver(*this);
+  validateOutput(*this);
+  validateConditions(*this);
 }
 
 }  // namespace ecm::mpm

@@ -1,7 +1,7 @@
 #pragma once
 // The plain description of an MPM run: grid, materials, bodies, boundary conditions, loads and
 // solver settings. Built in C++ (tests) or by the YAML reader (mpm/scene_yaml.hpp); checked
-// once by validate().
+// once by validate(), the one checker of a scene's values; the solver trusts a validated scene.
 #include <optional>
 #include <string>
 #include <vector>
@@ -67,7 +67,8 @@ struct Scene {
   std::vector<double> particleSnapshots;  // s, increasing: particles_t<time>.csv at each (maps of states)
   CheckpointSettings checkpoint;
 
-  // Throws std::invalid_argument with a message naming what is wrong.
+  // Throws io::ValueError naming the key path of the value that is wrong ("solver.cfl",
+  // "materials[1]"), so that the YAML reader can give its line.
   void validate() const;
 };
 

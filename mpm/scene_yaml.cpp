@@ -3,6 +3,7 @@
 #include <map>
 
 #include "io/material_yaml.hpp"
+#include "io/value_error.hpp"
 #include "mpm/presets.hpp"
 
 namespace ecm::mpm {
@@ -61,36 +62,22 @@ TimeFunction readTimeFunction(const YamlMap& m) {
     h.kind = TimeFunctionKind::Table;
   } else {
     h.value = m.get<double>("value");
-    if (type != "hold") h.rampTime = m.get<double>("time", Range::positive());
+    if (type != "hold") h.rampTime = m.get<double>("time");
     h.kind = type == "hold" ? TimeFunctionKind::Hold : (type == "linear_ramp" ? TimeFunctionKind::LinearRamp : TimeFunctionKind::SmoothRamp);
-  }
-  try {
-    h.validate();
-  } catch (const std::invalid_argument& e) {
-    m.failHere(e.what());
   }
   return h;
 }
 
-Box readBox(const YamlMap& m) {
-  Box b{vec2(m, "min"), vec2(m, "max")};
-  if (!(b.max[0] >= b.min[0] && b.max[1] >= b.min[1])) m.failHere("box needs max >= min in x and y");
-  return b;
-}
+Box readBox(const YamlMap& m) { return {vec2(m, "min"), vec2(m, "max")}; }
 
 Grid readGrid(const YamlMap& m) {
   Grid g;
   g.origin = vec2(m, "origin");
-  g.cellSize = vec2(m, "cell_size", Range::positive());
-  const auto cells = m.getVector("cells", 2, Range{1.0, 1e9, true, true});
+  g.cellSize = vec2(m, "cell_size");
+  const auto cells = m.getVector("cells", 2, Range{1.0, 1e9, true, true});  // whole numbers that fit an int
   if (cells[0] != std::floor(cells[0]) || cells[1] != std::floor(cells[1])) m.fail("cells", "expected whole numbers");
   g.cellsX = static_cast<int>(cells[0]);
   g.cellsY = static_cast<int>(cells[1]);
-  try {
-    g.validate();
-  } catch (const std::invalid_argument& e) {
-    m.failHere(e.what());
-  }
   return g;
 }
 
@@ -106,14 +93,14 @@ SolverSettings readSolver(const YamlMap& m, const std::string& preset) {
   s.scheme = scheme == "usf" ? UpdateScheme::USF : (scheme == "musl" ? UpdateScheme::MUSL : UpdateScheme::USL);
   const std::string shape = m.getEnumOr("shape_function", {"linear", "ugimp", "bspline2"}, "linear");
   s.shapeFunction = shape == "ugimp" ? ShapeFunction::UGimp : (shape == "bspline2" ? ShapeFunction::BSpline2 : ShapeFunction::Linear);
-  s.flip = m.getOr<double>("flip", 1.0, Range::closed(0.0, 1.0));
-  s.cfl = m.getOr<double>("cfl", 0.3, Range{0.0, 1.0, false, true});
+  s.flip = m.getOr<double>("flip", s.flip);
+  s.cfl = m.getOr<double>("cfl", s.cfl);
   s.effectiveSize = m.getEnumOr("effective_size", {"sqrt", "oriented"}, "sqrt") == "oriented" ? EffectiveSizeRule::Oriented
                                                                                                : EffectiveSizeRule::SquareRoot;
-  s.damping.local = m.getOr<double>("local_damping", 0.0, Range{0.0, 1.0, true, false});
-  s.damping.viscous = m.getOr<double>("viscous_damping", 0.0, Range::nonNegative());
+  s.damping.local = m.getOr<double>("local_damping", s.damping.local);
+  s.damping.viscous = m.getOr<double>("viscous_damping", s.damping.viscous);
   if (m.has("gravity")) s.gravity = vec2(m, "gravity");
-  s.substepLevels = m.getOr<int>("substep_levels", 4, Range::closed(0.0, 12.0));
+  s.substepLevels = m.getOr<int>("substep_levels", s.substepLevels);
   s.snapBack = io::readSnapBackPolicy(m);
   return s;
 }
@@ -138,14 +125,9 @@ Body readBody(const YamlMap& m, const std::map<std::string, int>& materials) {
     b.shape = Shape::rectangle(vec2(r, "min"), vec2(r, "max"));
   } else if (m.has("circle")) {
     const YamlMap c = m.child("circle");
-    b.shape = Shape::circle(vec2(c, "center"), c.get<double>("radius", Range::positive()));
+    b.shape = Shape::circle(vec2(c, "center"), c.get<double>("radius"));
   } else {
     b.shape = Shape::polygon(pairs(m, "polygon", 3));
-  }
-  try {
-    b.shape.validate();
-  } catch (const std::invalid_argument& e) {
-    m.failHere(e.what());
   }
   b.subtract = m.getOr<bool>("subtract", false);
   if (b.subtract) {
@@ -172,14 +154,10 @@ std::vector<Body> readRveBody(const YamlMap& m, const std::map<std::string, int>
   }
 }
 
-NodeCondition readCondition(const YamlMap& m, const Grid& grid) {
+NodeCondition readCondition(const YamlMap& m) {
   NodeCondition c;
   c.name = m.get<std::string>("name");
   c.box = readBox(m.child("box"));
-  bool any = false;
-  const double tol = 1e-9 * std::min(grid.cellSize[0], grid.cellSize[1]);
-  for (int n = 0; n < grid.nodeCount() && !any; ++n) any = c.box.contains(grid.nodePosition(n), tol);
-  if (!any) m.fail("box", "contains no grid node");
   auto set = [&](int d, Prescribed kind, const TimeFunction& h, const std::string& key) {
     auto& k = c.component[static_cast<std::size_t>(d)];
     if (k.kind != Prescribed::Free) m.fail(key, std::string("component ") + (d ? "y" : "x") + " is prescribed twice");
@@ -218,8 +196,6 @@ NodeCondition readCondition(const YamlMap& m, const Grid& grid) {
     if (f.has("scale")) a.scale = readTimeFunction(f.child("scale"));
     c.field = a;
   }
-  if (!c.field && c.component[0].kind == Prescribed::Free && c.component[1].kind == Prescribed::Free)
-    m.failHere("condition '" + c.name + "' prescribes nothing (give fixed, velocity, displacement or velocity_field)");
   return c;
 }
 
@@ -235,7 +211,7 @@ Load readLoad(const YamlMap& m) {
 
 CheckpointSettings readCheckpoint(const YamlMap& m) {
   CheckpointSettings c;
-  c.everySteps = m.getOr<int>("every_steps", 0, Range::closed(1.0, 2147483647.0));
+  c.everySteps = m.getOr<int>("every_steps", 0, Range::closed(1.0, 2147483647.0));  // 0 only by leaving it out
   c.everyMinutes = m.getOr<double>("every_minutes", 0.0, Range::positive());
   if (!m.has("every_steps") && !m.has("every_minutes")) {
     m.finish();  // an unknown key says more than "nothing given"
@@ -246,12 +222,11 @@ CheckpointSettings readCheckpoint(const YamlMap& m) {
 
 // stop_when: {condition: NAME, load_below: FRACTION, after_time: T}; `conditions` are the
 // scene's, read before, so that the name can be checked at this map's line.
-StopWhen readStopWhen(const YamlMap& m, const std::vector<NodeCondition>& conditions) {
+StopWhen readStopWhen(const YamlMap& m) {
   StopWhen w;
   w.condition = m.get<std::string>("condition");
-  if (!findCondition(conditions, w.condition)) m.fail("condition", "no condition is named '" + w.condition + "'");
-  w.loadBelow = m.get<double>("load_below", Range::open(0.0, 1.0));
-  w.afterTime = m.getOr<double>("after_time", 0.0, Range::nonNegative());
+  w.loadBelow = m.get<double>("load_below");
+  w.afterTime = m.getOr<double>("after_time", w.afterTime);
   m.finish();
   return w;
 }
@@ -262,74 +237,53 @@ Scene readScene(const YamlMap& m) {
   Scene s;
   s.name = m.getOr<std::string>("name", std::filesystem::path(m.file()).stem().string());
   s.grid = readGrid(m.child("grid"));
-  s.thickness = m.getOr<double>("thickness", 1.0, Range::positive());
+  s.thickness = m.getOr<double>("thickness", s.thickness);
   // A preset (mpm/presets.hpp) owns its knobs: the scene may not set them too.
   const std::string preset = m.has("preset") ? m.get<std::string>("preset") : "";
   if (!preset.empty() && !findPreset(preset)) m.fail("preset", "unknown preset '" + preset + "' (allowed: " + presetNames() + ")");
   if (!preset.empty()) m.reject("particles_per_cell", presetOwns(preset));
-  s.particlesPerCell = m.getOr<int>("particles_per_cell", 2, Range::closed(1.0, 8.0));
+  s.particlesPerCell = m.getOr<int>("particles_per_cell", s.particlesPerCell);
 
   std::map<std::string, int> names;
   const std::vector<YamlMap> materialMaps = m.sequence("materials");
   for (const YamlMap& mm : materialMaps) {
-    MaterialParams p = io::readMaterial(mm);
-    if (!(p.density > 0.0)) mm.failHere("material '" + p.name + "': MPM needs density > 0 (t/mm^3)");
-    if (!names.emplace(p.name, static_cast<int>(s.materials.size())).second)
-      mm.failHere("material name '" + p.name + "' is defined twice");
-    if (!s.materials.empty() && p.elastic.hypothesis != s.materials.front().elastic.hypothesis)
-      mm.failHere("material '" + p.name + "': all materials must share plane_stress or plane_strain");
+    MaterialParams p = io::readMaterial(mm);  // checked there by MaterialParams::validate, at its lines
+    names.emplace(p.name, static_cast<int>(s.materials.size()));  // (a name defined twice: Scene::validate)
     s.materials.push_back(std::move(p));
   }
-  if (s.materials.empty()) m.fail("materials", "needs at least one material");
-  if (s.materials.size() > 255) m.fail("materials", "at most 255 materials");
-  for (const YamlMap& b : m.sequence("bodies")) {
+  const std::vector<YamlMap> bodyMaps = m.sequence("bodies");
+  for (std::size_t i = 0; i < bodyMaps.size(); ++i) {
+    const YamlMap& b = bodyMaps[i];
+    std::vector<Body> bodies;
     if (b.has("rve")) {
       for (const char* k : {"rectangle", "polygon", "circle", "subtract", "material", "initial_velocity"})
         b.reject(k, "an rve body holds only the rve map");
-      for (Body& body : readRveBody(b, names)) s.bodies.push_back(std::move(body));
+      bodies = readRveBody(b, names);
     } else {
-      s.bodies.push_back(readBody(b, names));
+      bodies.push_back(readBody(b, names));
+    }
+    for (Body& body : bodies) {
+      body.item = static_cast<int>(i);
+      s.bodies.push_back(std::move(body));
     }
   }
-  if (s.bodies.empty()) m.fail("bodies", "needs at least one body");
   if (m.has("solver")) s.solver = readSolver(m.child("solver"), preset);
   if (!preset.empty()) applyPreset(*findPreset(preset), s);
-  // The grid's cells set H (the solver's effective_size rule): its smallest value must be one
-  // the enriched point accepts.
-  const EffectiveSize cellSize{s.solver.effectiveSize, 0.0, s.grid.cellSize[0], s.grid.cellSize[1]};
-  std::size_t index = 0;
-  for (const YamlMap& mm : materialMaps) {
-    const MaterialParams& p = s.materials[index++];
-    if (p.model != ModelKind::Enriched) continue;
-    if (const std::string problem = effectiveSizeProblem(cellSize.smallest(), p.bandWidth, p.secondBand == SecondBandOption::Off ? 1 : 2); !problem.empty())
-      mm.failHere("material '" + p.name + "' on this grid: the cells' " + problem);
-  }
-  s.endTime = m.get<double>("end_time", Range::positive());
-  s.outputInterval = m.getOr<double>("output_interval", 0.0, Range::nonNegative());
-  s.snapshotEvery = m.getOr<int>("snapshot_every", 1, Range::closed(1.0, 1e9));
-  if (m.has("particle_snapshots")) {
-    s.particleSnapshots = m.getVector("particle_snapshots", 0, Range::positive());
-    for (std::size_t i = 0; i < s.particleSnapshots.size(); ++i) {
-      if (i > 0 && !(s.particleSnapshots[i] > s.particleSnapshots[i - 1]))
-        m.fail("particle_snapshots", "times must increase");
-      if (s.particleSnapshots[i] > s.endTime) m.fail("particle_snapshots", "a time after end_time");
-    }
-  }
+  s.endTime = m.get<double>("end_time");
+  s.outputInterval = m.getOr<double>("output_interval", s.outputInterval);
+  s.snapshotEvery = m.getOr<int>("snapshot_every", s.snapshotEvery);
+  if (m.has("particle_snapshots")) s.particleSnapshots = m.getVector("particle_snapshots", 0);
   if (m.has("checkpoint")) s.checkpoint = readCheckpoint(m.child("checkpoint"));
   if (m.has("conditions"))
-    for (const YamlMap& c : m.sequence("conditions")) s.conditions.push_back(readCondition(c, s.grid));
+    for (const YamlMap& c : m.sequence("conditions")) s.conditions.push_back(readCondition(c));
   if (m.has("loads"))
     for (const YamlMap& l : m.sequence("loads")) s.loads.push_back(readLoad(l));
-  if (m.has("stop_when")) {
-    s.stopWhen = readStopWhen(m.child("stop_when"), s.conditions);
-    if (!(s.stopWhen->afterTime < s.endTime)) m.fail("stop_when", "after_time is not before end_time: it would never stop the run");
-    if (!(s.outputInterval > 0.0)) m.fail("stop_when", "is checked at the output rows: needs output_interval > 0");
-  }
+  if (m.has("stop_when")) s.stopWhen = readStopWhen(m.child("stop_when"));
   m.finish();
   try {
-    s.validate();  // whatever the piecewise checks above could not see
-  } catch (const std::invalid_argument& e) {
-    m.failHere(e.what());
+    s.validate();  // the values, checked in one place (Scene::validate), reported at their lines
+  } catch (const io::ValueError& e) {
+    m.failAt(e.key, e.reason);
   }
   return s;
 }

@@ -1,6 +1,8 @@
 #pragma once
-// Scenes in YAML (the edge: everything is checked here, with FILE:LINE: reason). Format, with
-// units mm, N, MPa, tonne (t), s; density in t/mm^3:
+// Scenes in YAML (the edge: nothing runs on a half-understood file; every error is FILE:LINE:
+// reason). The reader checks the form (keys, types, which keys go together); the values are
+// checked by Scene::validate, the one checker, whose errors the reader reports at the line of
+// the key they name. Format, with units mm, N, MPa, tonne (t), s; density in t/mm^3:
 //
 //   name: tension-block
 //   grid: {origin: [0, 0], cell_size: [10, 10], cells: [10, 12]}   # mm, mm, count

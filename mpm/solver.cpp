@@ -12,7 +12,7 @@
 namespace ecm::mpm {
 
 Solver::Solver(Scene scene, int threads)
-    : scene_((scene.validate(), std::move(scene))), threads_(threads > 0 ? threads : omp_get_max_threads()) {
+    : scene_(std::move(scene)), threads_(threads > 0 ? threads : omp_get_max_threads()) {
   const Grid& g = scene_.grid;
   particles_ = seedParticles(scene_);
   if (threads <= 0)

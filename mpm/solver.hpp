@@ -48,7 +48,7 @@ struct Energies {
 
 class Solver {
  public:
-  // Validates the scene and seeds the particles. threads > 0: exactly that many; 0: automatic,
+  // Seeds the particles of a validated scene (Scene::validate; readScene returns one). threads > 0: exactly that many; 0: automatic,
   // the OpenMP default but at most one thread per kParticlesPerThread particles (for small
   // scenes fork/join and barriers cost more than they save).
   explicit Solver(Scene scene, int threads = 0);

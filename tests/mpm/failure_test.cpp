@@ -2,6 +2,7 @@
 // converge even after sub-stepping, and invalid scenes all stop with a message that names them.
 #include <gtest/gtest.h>
 
+#include "io/value_error.hpp"
 #include "test_scenes.hpp"
 
 namespace ecm::mpm::test {
@@ -102,30 +103,42 @@ TEST(Failure, SnapBackUnderTheStopPolicyStopsTheRunWithStatusAndResidual) {
   }
 }
 
-TEST(Failure, InvalidScenesAreRefusedWithAReason) {
-  auto message = [](const Scene& s) {
+TEST(Failure, InvalidScenesAreRefusedWithTheKeyAndAReason) {
+  // Scene::validate, the one checker: the key path names the value (the YAML reader reports it
+  // at that key's line), the reason says what is wrong.
+  auto refusal = [](const Scene& s) {
     try {
-      Solver solver(s, 1);
-    } catch (const std::invalid_argument& e) {
-      return std::string(e.what());
+      s.validate();
+    } catch (const io::ValueError& e) {
+      return e.key + ": " + e.reason;
     }
     return std::string("nothing thrown");
   };
   Scene s = tensionBlock();
   s.solver.cfl = 1.2;
-  EXPECT_TRUE(contains(message(s), "CFL")) << message(s);
-  s = tensionBlock();
-  s.solver.shapeFunction = ShapeFunction::BSpline2;
-  EXPECT_TRUE(contains(message(s), "within 1.5 cells of the grid edge")) << message(s);
+  EXPECT_EQ(refusal(s), "solver.cfl: 1.2 is outside the allowed range (0, 1]");
   s = tensionBlock();
   s.materials[0].density = 0.0;
-  EXPECT_TRUE(contains(message(s), "density")) << message(s);
+  EXPECT_TRUE(contains(refusal(s), "materials[0]: material 'elastic': MPM needs density > 0")) << refusal(s);
   s = tensionBlock();
   s.conditions[0].box = {Vec2(-50.0, -50.0), Vec2(-40.0, -40.0)};
-  EXPECT_TRUE(contains(message(s), "contains no grid node")) << message(s);
+  EXPECT_EQ(refusal(s), "conditions[0].box: contains no grid node");
   s = tensionBlock();
   s.loads[0].history = TimeFunction::smoothRamp(1.0, -1.0);
-  EXPECT_TRUE(contains(message(s), "ramp time")) << message(s);
+  EXPECT_TRUE(contains(refusal(s), "loads[0].history: ") && contains(refusal(s), "ramp time")) << refusal(s);
+  EXPECT_EQ(refusal(tensionBlock()), "nothing thrown");
+}
+
+TEST(Failure, ParticlesTooCloseToTheGridEdgeForTheShapeFunctionAreRefusedBySeeding) {
+  // Where the particles sit is known only once they are seeded: the solver refuses it.
+  Scene s = tensionBlock();
+  s.solver.shapeFunction = ShapeFunction::BSpline2;
+  try {
+    Solver solver(s, 1);
+    FAIL() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_TRUE(contains(e.what(), "within 1.5 cells of the grid edge")) << e.what();
+  }
 }
 
 }  // namespace

@@ -184,6 +184,25 @@ TEST(SceneYaml, CheckpointKeysAreReadAndChecked) {
   }
 }
 
+// Values are checked by Scene::validate alone; the reader reports them at the line of the key
+// they name, however deep: the line numbers below are those of kScene plus the tail.
+TEST(SceneYaml, ValueErrorsFromValidateAreReportedAtTheirKeysLine) {
+  auto err = [](const std::string& tail) { return inputError([&] { readScene(io::parseYaml(kScene + tail, "scene.yaml")); }); };
+  const std::string twoConditions = "  - name: top\n"       // line 10
+                                    "    box: {min: [0, 200], max: [100, 200]}\n"  // line 11: above the grid
+                                    "    fixed: [y]\n";
+  io::InputError e = err(twoConditions);
+  EXPECT_EQ(e.line, 11);
+  expectContains(e.what(), "key 'conditions[1].box': contains no grid node");
+  e = err("solver:\n  flip: 0.5\n  cfl: 1.5\n");  // cfl on line 12
+  EXPECT_EQ(e.line, 12);
+  expectContains(e.what(), "key 'solver.cfl': 1.5 is outside the allowed range (0, 1]");
+  e = err("loads:\n  - name: pull\n    box: {min: [0, 90], max: [100, 100]}\n    force: [0, 1]\n"
+          "    history: {type: linear_ramp, value: 1, time: -1}\n");  // line 14
+  EXPECT_EQ(e.line, 14);
+  expectContains(e.what(), "key 'loads[0].history'");
+}
+
 // stop_when names one of the scene's conditions, a fraction in (0, 1) and a time before end_time.
 TEST(SceneYaml, StopWhenKeysAreReadAndChecked) {
   EXPECT_FALSE(readScene(io::parseYaml(kScene, "scene.yaml")).stopWhen);

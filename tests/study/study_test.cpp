@@ -76,7 +76,7 @@ TEST(StudyPlan, KnobValuesAreValidatedLikeTheScene) {
   EXPECT_EQ(e.line, 6);  // the line of the value 1.5
   expectContains(e.reason, "run 2 (solver.cfl=1.5)");
   expectContains(e.reason, "elastic-bar.yaml");
-  expectContains(e.reason, "key 'solver.cfl': value 1.5 is outside the allowed range (0, 1]");
+  expectContains(e.reason, "key 'solver.cfl': 1.5 is outside the allowed range (0, 1]");
 
   const Study misspelt = parse(barStudy("  solver.cfll: [0.2]\n"), tmp);
   expectContains(inputError([&] { planStudy(misspelt); }).reason, "unknown key 'cfll' in 'solver'");
