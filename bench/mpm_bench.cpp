@@ -62,7 +62,7 @@ void report(benchmark::State& state, const Solver& solver) {
 void BM_ElasticStep(benchmark::State& state) {
   const auto shape = static_cast<ShapeFunction>(state.range(1));
   Solver solver(block(158, elastic(), shape), static_cast<int>(state.range(0)));
-  auto& p = solver.particles();
+  auto& p = solver.editParticles();
   for (std::size_t i = 0; i < p.size(); ++i)
     p.velocity[i] = Vec2(100.0 * std::sin(0.05 * p.position[i][1]), 50.0 * std::cos(0.03 * p.position[i][0]));
   for (auto _ : state) solver.advance();
@@ -114,7 +114,7 @@ void BM_Phase(benchmark::State& state) {
   const int threads = static_cast<int>(state.range(2));
   const Scene s = cracked ? stretchedBlock() : block(158, elastic(), ShapeFunction::Linear);
   Solver solver(s, threads);
-  auto& p = solver.particles();
+  auto& p = solver.editParticles();
   if (cracked) {
     while (p.bands.size() < p.size()) solver.advance();
   } else {

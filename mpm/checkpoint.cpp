@@ -248,7 +248,7 @@ RunBookkeeping readCheckpoint(const std::filesystem::path& path, Solver& solver,
     refuse("its time step " + std::to_string(s.timeStep) + " s differs from the scene's " +
            std::to_string(solver.timeStep()) + " s (a material file or the grid changed)");
 
-  Particles& p = solver.particles();
+  Particles& p = solver.editParticles();
   const std::size_t n = d.count(1);
   if (n != p.size())
     refuse("it has " + std::to_string(n) + " particles, the scene " + std::to_string(p.size()));

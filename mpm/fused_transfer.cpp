@@ -119,22 +119,12 @@ using OrderedFn = std::size_t (*)(const TransferSetup&, Particles&, std::size_t,
                                   const std::uint32_t*, ScatterTarget, detail::BaseSpan&);
 
 FusedFn fusedFor(ShapeFunction f) {
-  switch (f) {
-    case ShapeFunction::Linear: return gatherStressScatter<ShapeFunction::Linear>;
-    case ShapeFunction::UGimp: return gatherStressScatter<ShapeFunction::UGimp>;
-    case ShapeFunction::BSpline2: return gatherStressScatter<ShapeFunction::BSpline2>;
-  }
-  return nullptr;
+  return withShapeFunction(f, []<ShapeFunction F>() -> FusedFn { return gatherStressScatter<F>; });
 }
 
 template <bool Locate>
 OrderedFn orderedFor(ShapeFunction f) {
-  switch (f) {
-    case ShapeFunction::Linear: return scatterInOrder<ShapeFunction::Linear, Locate>;
-    case ShapeFunction::UGimp: return scatterInOrder<ShapeFunction::UGimp, Locate>;
-    case ShapeFunction::BSpline2: return scatterInOrder<ShapeFunction::BSpline2, Locate>;
-  }
-  return nullptr;
+  return withShapeFunction(f, []<ShapeFunction F>() -> OrderedFn { return scatterInOrder<F, Locate>; });
 }
 
 }  // namespace

@@ -149,255 +149,305 @@ std::vector<std::string> historyColumns(const Scene& scene) {
   return h;
 }
 
-RunResult runScene(const Scene& scene, const RunOptions& options) {
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  auto seconds = [&](Clock::time_point since) { return std::chrono::duration<double>(Clock::now() - since).count(); };
-  Solver solver(scene, options.threads);  // throws on an invalid scene, before any output
-  const std::filesystem::path& dir = options.outputDir;
-  const std::filesystem::path checkpointFile = checkpointPath(dir);
-  RunResult result;
-  result.particles = solver.particles().size();
+namespace {
 
-  // A restart reads its checkpoint before anything in the folder is touched.
-  RunBookkeeping book;
-  if (options.restart) {
-    book = readCheckpoint(checkpointFile, solver, options.sceneHash);
-    result.restartedFrom = solver.step();
-    if (book.threads != solver.threads())
-      std::fprintf(stderr,
-                   "warning: %s was written on %d threads, the run goes on on %d: the results agree with an "
-                   "uninterrupted run to round-off, not bitwise\n",
-                   checkpointFile.string().c_str(), book.threads, solver.threads());
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// One run of a scene: the step loop and its parts, each a member function of its own:
+//   output       a history row at every output step, a VTU snapshot at every snapshot_every-th
+//                one and at the end, particle snapshots at the scene's times, the final particles;
+//   checkpoint   when one is due (every N steps, M minutes, on a stop request) and what it
+//                records of the run's bookkeeping besides the solver's state;
+//   stop         the end time, the scene's stop_when (at an output row), a stop request
+//                (signal, --max-steps).
+// Then the summary and the plots.
+class Run {
+ public:
+  Run(const Scene& scene, const RunOptions& options)
+      : scene_(scene), options_(options), start_(Clock::now()), solver_(scene, options.threads),
+        checkpointFile_(checkpointPath(options.outputDir)), lastCheckpoint_(start_) {
+    result_.particles = solver_.particles().size();
+    if (options.restart) readRestart();  // before anything in the folder is touched
+    io::prepareOutputDir(options.outputDir);
+    openOutputs();
+    if (scene.stopWhen) {
+      watched_ = findCondition(scene.conditions, scene.stopWhen->condition).value();  // validated
+      watchedComponent_ = drivenComponent(scene.conditions.at(watched_));
+    }
+    for (const auto& c : scene.conditions) anyDriven_ = anyDriven_ || driven(c);
   }
-  io::prepareOutputDir(dir);
-  std::unique_ptr<io::CsvWriter> history;
-  if (options.restart) {
+
+  RunResult execute() {
     try {
-      history = std::make_unique<io::CsvWriter>(dir / "history.csv", historyColumns(scene), book.history);
-    } catch (const io::OutputError&) {
-      throw;
-    } catch (const std::runtime_error& e) {
-      throw CheckpointError("cannot continue from checkpoint '" + checkpointFile.string() + "': " + e.what());
+      if (!options_.restart) {
+        watchStop();
+        output();
+      }
+      stepLoop();
+      result_.completed = !result_.stopped;
+    } catch (const SimulationError& e) {
+      result_.error = e.what();
+      try {
+        output(true);  // the state at the failure (history row and snapshot), for a look at what went wrong
+      } catch (const io::OutputError& o) {
+        result_.error += std::string("; then: ") + o.what();
+        outputFailed_ = true;
+      }
+    } catch (const io::OutputError& e) {
+      // A file could not be written (full disk?): what is on disk stays readable (history.csv ends
+      // with its last whole row, the other files are replaced atomically). Nothing more is written
+      // but, if it can be, the summary.
+      result_.error = std::string(e.what()) + " (at step " + std::to_string(solver_.step()) + ")";
+      outputFailed_ = true;
     }
-  } else {
-    std::error_code ignored;  // a checkpoint of an earlier run in this folder no longer applies
-    std::filesystem::remove(checkpointFile, ignored);
-    history = std::make_unique<io::CsvWriter>(dir / "history.csv", historyColumns(scene));
-  }
-  std::unique_ptr<VtuSeries> snapshots;
-  if (options.snapshots) {
-    snapshots = std::make_unique<VtuSeries>(dir);
-    if (options.restart) snapshots->resume(book.snapshotTimes);
-  }
-  std::unique_ptr<io::Progress> progress;
-  if (options.progress) {
-    io::Progress::Options o;
-    o.label = "ecm-mpm " + scene.name;
-    progress = std::make_unique<io::Progress>(scene.endTime, o);
+    if (progress_) progress_->finish();
+    closeOutputs();
+    result_.steps = solver_.step();
+    result_.wallTime = secondsSince(start_);
+    std::error_code ec;
+    if (result_.completed) std::filesystem::remove(checkpointFile_, ec);  // it describes an unfinished run
+    if (std::filesystem::exists(checkpointFile_, ec)) result_.checkpoint = checkpointFile_;
+    try {
+      io::writeJsonSummary(summary(), options_.outputDir / "summary.json");
+    } catch (const io::OutputError& o) {  // the old summary, if any, stays whole
+      outputFailure(o);
+    }
+    if (!outputFailed_ && options_.plot && !result_.stopped) {
+      plot(scene_, options_.outputDir);
+      plotDamage(scene_, solver_.particles().size(), options_.outputDir);
+    }
+    return result_;
   }
 
-  // A history row at every output step; a VTU snapshot at every snapshot_every-th one (row 0, N,
-  // 2N, ...) and at the end. The row count survives a restart, so the series goes on in step.
-  // (A half-step tolerance in finished(): round-off in the accumulated time adds no step.)
-  // The scene's stop_when (mpm/stop_when.hpp) ends it earlier, at an output row.
-  auto finished = [&] { return result.endedByStopWhen || solver.time() >= scene.endTime - 0.5 * solver.timeStep(); };
-  StopWatch watch;
-  std::size_t watched = 0;
-  int watchedComponent = 0;
-  if (scene.stopWhen) {
-    watched = findCondition(scene.conditions, scene.stopWhen->condition).value();  // validated
-    watchedComponent = drivenComponent(scene.conditions.at(watched));
-  }
-  auto watchStop = [&] {  // at an output row, before it is written
-    if (!scene.stopWhen) return;
-    const double load = solver.conditions()[watched].reaction[watchedComponent];
-    if (watch.observe(*scene.stopWhen, solver.time(), load)) {
-      result.endedByStopWhen = true;
-      result.stopLoad = load;
-    }
-  };
-  auto output = [&](bool forceSnapshot = false) {
-    const std::size_t row = history->rows();
-    history->row(historyRow(solver));
-    history->flush();
-    if (snapshots && (forceSnapshot || row % static_cast<std::size_t>(scene.snapshotEvery) == 0 || finished()))
-      snapshots->add(solver);
-  };
-  // The peak of the driven conditions' reactions (all conditions' if none is driven) and loads.
-  bool anyDriven = false;
-  for (const auto& c : scene.conditions) anyDriven = anyDriven || driven(c);
-  auto trackPeak = [&] {
-    for (std::size_t i = 0; i < scene.conditions.size(); ++i)
-      if (driven(scene.conditions[i]) || !anyDriven)
-        result.peakLoad = std::max(result.peakLoad, solver.conditions()[i].reaction.norm());
-    for (const auto& l : solver.loads()) result.peakLoad = std::max(result.peakLoad, l.applied.norm());
-  };
-
-  double nextOutput = scene.outputInterval;
-  // Particle snapshots (particles_t<time>.csv) at the scene's times, the first step at or past each;
-  // after a restart, those already behind the checkpoint are done.
-  std::size_t nextSnapshot = 0;
-  auto particleSnapshots = [&] {
-    const auto& times = scene.particleSnapshots;
-    for (; nextSnapshot < times.size() && solver.time() >= times[nextSnapshot] - 0.5 * solver.timeStep(); ++nextSnapshot) {
-      std::ostringstream name;
-      name << "particles_t" << times[nextSnapshot] << ".csv";
-      writeParticles(solver, dir / name.str());
-    }
-  };
-  long checkpointStep = -1;  // the step of the checkpoint on disk
-  auto lastCheckpoint = start;
-  if (options.restart) {
-    while (nextSnapshot < scene.particleSnapshots.size() &&
-           solver.time() >= scene.particleSnapshots[nextSnapshot] - 0.5 * solver.timeStep())
-      ++nextSnapshot;
-    nextOutput = book.nextOutput;
-    result.peakLoad = book.peakLoad;
-    watch.peak = book.stopWatchPeak;
-    checkpointStep = solver.step();
-  }
-  auto checkpoint = [&] {
-    if (checkpointStep == solver.step()) return;
-    history->flush();
-    book.nextOutput = nextOutput;
-    book.peakLoad = result.peakLoad;
-    book.stopWatchPeak = watch.peak;
-    book.history = {history->bytes(), history->digest(), history->rows()};
-    if (snapshots) book.snapshotTimes = snapshots->times();
-    writeCheckpoint(checkpointFile, solver, book, options.sceneHash);
-    checkpointStep = solver.step();
-    lastCheckpoint = Clock::now();
-    ++result.checkpoints;
-  };
-  const CheckpointSettings& every = scene.checkpoint;
-  auto stopRequested = [&] {
-    return (options.stop && options.stop->load(std::memory_order_relaxed)) ||
-           (options.maxSteps > 0 && solver.step() >= options.maxSteps);
-  };
-
-  bool outputFailed = false;
-  try {
-    if (!options.restart) {
-      watchStop();
-      output();
-    }
+ private:
+  // --- the loop ---
+  void stepLoop() {
     while (!finished()) {
       if (stopRequested()) {
         checkpoint();
-        result.stopped = true;
+        result_.stopped = true;
         break;
       }
-      solver.advance();
+      solver_.advance();
       trackPeak();
       particleSnapshots();
-      if (finished() || (scene.outputInterval > 0.0 && solver.time() >= nextOutput - 0.5 * solver.timeStep())) {
+      if (finished() || (scene_.outputInterval > 0.0 && solver_.time() >= nextOutput_ - 0.5 * solver_.timeStep())) {
         watchStop();
         output();
-        while (scene.outputInterval > 0.0 && nextOutput <= solver.time() + 0.5 * solver.timeStep())
-          nextOutput += scene.outputInterval;  // (output_interval 0: the last step only)
+        while (scene_.outputInterval > 0.0 && nextOutput_ <= solver_.time() + 0.5 * solver_.timeStep())
+          nextOutput_ += scene_.outputInterval;  // (output_interval 0: the last step only)
       }
-      if (progress) progress->update(solver.time());
-      if (!finished() && ((every.everySteps > 0 && solver.step() % every.everySteps == 0) ||
-                          (every.everyMinutes > 0.0 && seconds(lastCheckpoint) >= 60.0 * every.everyMinutes)))
-        checkpoint();
+      if (progress_) progress_->update(solver_.time());
+      if (!finished() && checkpointDue()) checkpoint();
     }
-    result.completed = !result.stopped;
-  } catch (const SimulationError& e) {
-    result.error = e.what();
-    try {
-      output(true);  // the state at the failure (history row and snapshot), for a look at what went wrong
-    } catch (const io::OutputError& o) {
-      result.error += std::string("; then: ") + o.what();
-      outputFailed = true;
-    }
-  } catch (const io::OutputError& e) {
-    // A file could not be written (full disk?): what is on disk stays readable (history.csv ends
-    // with its last whole row, the other files are replaced atomically). Nothing more is written
-    // but, if it can be, the summary.
-    result.error = std::string(e.what()) + " (at step " + std::to_string(solver.step()) + ")";
-    outputFailed = true;
   }
-  if (progress) progress->finish();
-  // What goes wrong from here on is added to the result; what was written stays readable.
-  auto outputFailure = [&](const io::OutputError& o) {
-    result.error = result.error.empty() ? o.what() : result.error + "; then: " + o.what();
-    result.completed = result.stopped = false;
-    outputFailed = true;
-  };
-  try {
-    if (!outputFailed) history->close();
-    if (!outputFailed) writeParticles(solver, dir / "particles_final.csv");  // also after a failure or a stop
-  } catch (const io::OutputError& o) {
-    outputFailure(o);
-  }
-  result.steps = solver.step();
-  result.wallTime = seconds(start);
-  std::error_code ec;
-  if (result.completed) std::filesystem::remove(checkpointFile, ec);  // it describes an unfinished run
-  if (std::filesystem::exists(checkpointFile, ec)) result.checkpoint = checkpointFile;
 
-  const Energies e = solver.energies();
-  const Particles& p = solver.particles();
-  nlohmann::json summary = {
-      {"scene", scene.name},
-      {"status", result.completed ? "completed" : (result.stopped ? "stopped" : "failed")},
-      {"peak_load", result.peakLoad},
-      {"wall_time_s", result.wallTime},
-      {"steps", result.steps},
-      {"particles", result.particles},
-      {"cracked_particles", p.bands.size()},
-      {"bytes_per_particle_uncracked", p.bytesPerParticle()},
-      {"bytes_per_particle_cracked", p.bytesPerParticle() + Particles::bytesPerBand()},
-      {"time_step_s", solver.timeStep()},
-      {"end_time_s", solver.time()},
-      {"threads", solver.threads()},
-      {"preset", scene.preset.empty() ? "none" : scene.preset},
-      {"particles_per_cell", scene.particlesPerCell},
-      {"cfl", scene.solver.cfl},
-      {"scheme", toString(scene.solver.scheme)},
-      {"shape_function", toString(scene.solver.shapeFunction)},
-      {"substepped_updates", solver.substepped()},
-      {"snap_back_releases", solver.snapBackReleases()},
-      {"particle_updates_per_s",  // of this run's steps (after a restart: those since the checkpoint)
-       result.wallTime > 0.0 ? static_cast<double>(result.particles) *
-                                   static_cast<double>(result.steps - std::max(result.restartedFrom, 0L)) / result.wallTime
-                             : 0.0},
-      {"energies_Nmm",
-       {{"kinetic", e.kinetic}, {"strain", e.strain}, {"external_work", e.externalWork}, {"dissipated", e.dissipated},
-        {"damping", e.damping}}},
-      {"checkpoints_written", result.checkpoints},
-      {"units", "mm, N, MPa, t, s"}};
-  if (scene.stopWhen) {
-    const StopWhen& w = *scene.stopWhen;
-    summary["stop_when"] = {{"condition", w.condition},
-                            {"load_below", w.loadBelow},
-                            {"after_time_s", w.afterTime},
-                            {"met", result.endedByStopWhen},
-                            {"peak_of_rows_N", watch.peak}};
-    if (result.endedByStopWhen) summary["stop_when"]["load_at_stop_N"] = result.stopLoad;
+  // --- stop ---
+  // (A half-step tolerance: round-off in the accumulated time adds no step.)
+  bool finished() const {
+    return result_.endedByStopWhen || solver_.time() >= scene_.endTime - 0.5 * solver_.timeStep();
   }
-  if (!p.secondBand.empty()) {  // second_band: orthogonal (docs/model.md)
-    summary["two_band_points"] = p.twoBandPoints();
-    summary["bytes_per_particle_two_bands"] = p.bytesPerParticle() + 2 * Particles::bytesPerBand();
+  bool stopRequested() const {
+    return (options_.stop && options_.stop->load(std::memory_order_relaxed)) ||
+           (options_.maxSteps > 0 && solver_.step() >= options_.maxSteps);
   }
-  if (!result.completed && !result.stopped) summary["error"] = result.error;
-  if (result.restartedFrom >= 0) summary["restarted_from_step"] = result.restartedFrom;
-  if (!result.checkpoint.empty()) {
-    summary["checkpoint"] = result.checkpoint.string();
-    summary["checkpoint_step"] = checkpointStep;
+  // The scene's stop_when (mpm/stop_when.hpp), at an output row, before it is written.
+  void watchStop() {
+    if (!scene_.stopWhen) return;
+    const double load = solver_.conditions()[watched_].reaction[watchedComponent_];
+    if (watch_.observe(*scene_.stopWhen, solver_.time(), load)) {
+      result_.endedByStopWhen = true;
+      result_.stopLoad = load;
+    }
   }
-  if (result.stopped && !options.resumeCommand.empty()) summary["resume"] = options.resumeCommand;
-  try {
-    io::writeJsonSummary(summary, dir / "summary.json");
-  } catch (const io::OutputError& o) {  // the old summary, if any, stays whole
-    outputFailure(o);
+  // The peak of the driven conditions' reactions (all conditions' if none is driven) and loads.
+  void trackPeak() {
+    for (std::size_t i = 0; i < scene_.conditions.size(); ++i)
+      if (driven(scene_.conditions[i]) || !anyDriven_)
+        result_.peakLoad = std::max(result_.peakLoad, solver_.conditions()[i].reaction.norm());
+    for (const auto& l : solver_.loads()) result_.peakLoad = std::max(result_.peakLoad, l.applied.norm());
   }
-  if (!outputFailed && options.plot && !result.stopped) {
-    plot(scene, dir);
-    plotDamage(scene, solver.particles().size(), dir);
+
+  // --- output ---
+  void openOutputs() {
+    const std::filesystem::path& dir = options_.outputDir;
+    if (options_.restart) {
+      try {
+        history_ = std::make_unique<io::CsvWriter>(dir / "history.csv", historyColumns(scene_), book_.history);
+      } catch (const io::OutputError&) {
+        throw;
+      } catch (const std::runtime_error& e) {
+        throw CheckpointError("cannot continue from checkpoint '" + checkpointFile_.string() + "': " + e.what());
+      }
+    } else {
+      std::error_code ignored;  // a checkpoint of an earlier run in this folder no longer applies
+      std::filesystem::remove(checkpointFile_, ignored);
+      history_ = std::make_unique<io::CsvWriter>(dir / "history.csv", historyColumns(scene_));
+    }
+    if (options_.snapshots) {
+      snapshots_ = std::make_unique<VtuSeries>(dir);
+      if (options_.restart) snapshots_->resume(book_.snapshotTimes);
+    }
+    if (options_.progress) {
+      io::Progress::Options o;
+      o.label = "ecm-mpm " + scene_.name;
+      progress_ = std::make_unique<io::Progress>(scene_.endTime, o);
+    }
   }
-  return result;
-}
+  // A history row; a VTU snapshot at row 0, N, 2N, ... (N = snapshot_every) and at the end. The
+  // row count survives a restart, so the series goes on in step.
+  void output(bool forceSnapshot = false) {
+    const std::size_t row = history_->rows();
+    history_->row(historyRow(solver_));
+    history_->flush();
+    if (snapshots_ && (forceSnapshot || row % static_cast<std::size_t>(scene_.snapshotEvery) == 0 || finished()))
+      snapshots_->add(solver_);
+  }
+  // particles_t<time>.csv at the scene's times, the first step at or past each.
+  void particleSnapshots() {
+    const auto& times = scene_.particleSnapshots;
+    for (; nextSnapshot_ < times.size() && solver_.time() >= times[nextSnapshot_] - 0.5 * solver_.timeStep(); ++nextSnapshot_) {
+      std::ostringstream name;
+      name << "particles_t" << times[nextSnapshot_] << ".csv";
+      writeParticles(solver_, options_.outputDir / name.str());
+    }
+  }
+  // What goes wrong from here on is added to the result; what was written stays readable.
+  void outputFailure(const io::OutputError& o) {
+    result_.error = result_.error.empty() ? o.what() : result_.error + "; then: " + o.what();
+    result_.completed = result_.stopped = false;
+    outputFailed_ = true;
+  }
+  void closeOutputs() {
+    try {
+      if (!outputFailed_) history_->close();
+      if (!outputFailed_) writeParticles(solver_, options_.outputDir / "particles_final.csv");  // also after a failure or a stop
+    } catch (const io::OutputError& o) {
+      outputFailure(o);
+    }
+  }
+
+  // --- checkpoint ---
+  void readRestart() {
+    book_ = readCheckpoint(checkpointFile_, solver_, options_.sceneHash);
+    result_.restartedFrom = solver_.step();
+    if (book_.threads != solver_.threads())
+      std::fprintf(stderr,
+                   "warning: %s was written on %d threads, the run goes on on %d: the results agree with an "
+                   "uninterrupted run to round-off, not bitwise\n",
+                   checkpointFile_.string().c_str(), book_.threads, solver_.threads());
+    // Particle snapshots behind the checkpoint are done.
+    while (nextSnapshot_ < scene_.particleSnapshots.size() &&
+           solver_.time() >= scene_.particleSnapshots[nextSnapshot_] - 0.5 * solver_.timeStep())
+      ++nextSnapshot_;
+    nextOutput_ = book_.nextOutput;
+    result_.peakLoad = book_.peakLoad;
+    watch_.peak = book_.stopWatchPeak;
+    checkpointStep_ = solver_.step();
+  }
+  bool checkpointDue() const {
+    const CheckpointSettings& every = scene_.checkpoint;
+    return (every.everySteps > 0 && solver_.step() % every.everySteps == 0) ||
+           (every.everyMinutes > 0.0 && secondsSince(lastCheckpoint_) >= 60.0 * every.everyMinutes);
+  }
+  void checkpoint() {
+    if (checkpointStep_ == solver_.step()) return;
+    history_->flush();
+    book_.nextOutput = nextOutput_;
+    book_.peakLoad = result_.peakLoad;
+    book_.stopWatchPeak = watch_.peak;
+    book_.history = {history_->bytes(), history_->digest(), history_->rows()};
+    if (snapshots_) book_.snapshotTimes = snapshots_->times();
+    writeCheckpoint(checkpointFile_, solver_, book_, options_.sceneHash);
+    checkpointStep_ = solver_.step();
+    lastCheckpoint_ = Clock::now();
+    ++result_.checkpoints;
+  }
+
+  // --- summary ---
+  nlohmann::json summary() const {
+    const Energies e = solver_.energies();
+    const Particles& p = solver_.particles();
+    const RunResult& r = result_;
+    nlohmann::json j = {
+        {"scene", scene_.name},
+        {"status", r.completed ? "completed" : (r.stopped ? "stopped" : "failed")},
+        {"peak_load", r.peakLoad},
+        {"wall_time_s", r.wallTime},
+        {"steps", r.steps},
+        {"particles", r.particles},
+        {"cracked_particles", p.bands.size()},
+        {"bytes_per_particle_uncracked", p.bytesPerParticle()},
+        {"bytes_per_particle_cracked", p.bytesPerParticle() + Particles::bytesPerBand()},
+        {"time_step_s", solver_.timeStep()},
+        {"end_time_s", solver_.time()},
+        {"threads", solver_.threads()},
+        {"preset", scene_.preset.empty() ? "none" : scene_.preset},
+        {"particles_per_cell", scene_.particlesPerCell},
+        {"cfl", scene_.solver.cfl},
+        {"scheme", toString(scene_.solver.scheme)},
+        {"shape_function", toString(scene_.solver.shapeFunction)},
+        {"substepped_updates", solver_.substepped()},
+        {"snap_back_releases", solver_.snapBackReleases()},
+        {"particle_updates_per_s",  // of this run's steps (after a restart: those since the checkpoint)
+         r.wallTime > 0.0 ? static_cast<double>(r.particles) *
+                                static_cast<double>(r.steps - std::max(r.restartedFrom, 0L)) / r.wallTime
+                          : 0.0},
+        {"energies_Nmm",
+         {{"kinetic", e.kinetic}, {"strain", e.strain}, {"external_work", e.externalWork}, {"dissipated", e.dissipated},
+          {"damping", e.damping}}},
+        {"checkpoints_written", r.checkpoints},
+        {"units", "mm, N, MPa, t, s"}};
+    if (scene_.stopWhen) {
+      const StopWhen& w = *scene_.stopWhen;
+      j["stop_when"] = {{"condition", w.condition},
+                        {"load_below", w.loadBelow},
+                        {"after_time_s", w.afterTime},
+                        {"met", r.endedByStopWhen},
+                        {"peak_of_rows_N", watch_.peak}};
+      if (r.endedByStopWhen) j["stop_when"]["load_at_stop_N"] = r.stopLoad;
+    }
+    if (!p.secondBand.empty()) {  // second_band: orthogonal (docs/model.md)
+      j["two_band_points"] = p.twoBandPoints();
+      j["bytes_per_particle_two_bands"] = p.bytesPerParticle() + 2 * Particles::bytesPerBand();
+    }
+    if (!r.completed && !r.stopped) j["error"] = r.error;
+    if (r.restartedFrom >= 0) j["restarted_from_step"] = r.restartedFrom;
+    if (!r.checkpoint.empty()) {
+      j["checkpoint"] = r.checkpoint.string();
+      j["checkpoint_step"] = checkpointStep_;
+    }
+    if (r.stopped && !options_.resumeCommand.empty()) j["resume"] = options_.resumeCommand;
+    return j;
+  }
+
+  const Scene& scene_;
+  const RunOptions& options_;
+  const Clock::time_point start_;
+  Solver solver_;  // throws on a scene it cannot seed, before any output
+  const std::filesystem::path checkpointFile_;
+  RunResult result_;
+  RunBookkeeping book_;
+  // output
+  std::unique_ptr<io::CsvWriter> history_;
+  std::unique_ptr<VtuSeries> snapshots_;
+  std::unique_ptr<io::Progress> progress_;
+  double nextOutput_ = scene_.outputInterval;
+  std::size_t nextSnapshot_ = 0;
+  bool outputFailed_ = false;
+  // stop
+  StopWatch watch_;
+  std::size_t watched_ = 0;
+  int watchedComponent_ = 0;
+  bool anyDriven_ = false;
+  // checkpoint
+  long checkpointStep_ = -1;  // the step of the checkpoint on disk
+  Clock::time_point lastCheckpoint_;
+};
+
+}  // namespace
+
+RunResult runScene(const Scene& scene, const RunOptions& options) { return Run(scene, options).execute(); }
 
 }  // namespace ecm::mpm

@@ -22,6 +22,19 @@ const char* toString(ShapeFunction f);
 // Nodes per direction of a stencil.
 constexpr int supportSize(ShapeFunction f) { return f == ShapeFunction::Linear ? 2 : 3; }
 
+// The one dispatch from the scene's shape function to the compiled kernels: returns
+// fn.template operator()<F>() for F = f. Callers pick a kernel once per phase, e.g.
+//   withShapeFunction(f, []<ShapeFunction F>() { return &scatter<F>; })
+template <class Fn>
+decltype(auto) withShapeFunction(ShapeFunction f, Fn&& fn) {
+  switch (f) {
+    case ShapeFunction::UGimp: return fn.template operator()<ShapeFunction::UGimp>();
+    case ShapeFunction::BSpline2: return fn.template operator()<ShapeFunction::BSpline2>();
+    case ShapeFunction::Linear: break;
+  }
+  return fn.template operator()<ShapeFunction::Linear>();
+}
+
 struct Stencil {
   std::int32_t base = 0;          // node index of the lower-left node of the stencil
   double wx[3] = {}, wy[3] = {};  // 1D weights

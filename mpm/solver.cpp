@@ -64,39 +64,6 @@ Solver::Solver(Scene scene, int threads)
   }
 }
 
-void Solver::advance() {
-  switch (scene_.solver.scheme) {
-    case UpdateScheme::USF:
-      particleToGrid(kStencils | kMassMomentum);
-      gridVelocities();
-      computeStrainIncrements();
-      updateStresses();
-      particleToGrid(kForces);
-      updateGrid();
-      gridToParticle(false);
-      break;
-    case UpdateScheme::USL:  // in one pass over the particles (fused_transfer.cpp)
-      if (!gridHoldsState_) scatterState();  // first step, restart, or particles changed
-      addLoads();
-      updateGrid();
-      gatherStressScatter();  // with the closed-form stresses and the next step's scatter
-      updateStresses(true);   // the deferred points
-      scatterDeferred();
-      break;
-    case UpdateScheme::MUSL:
-      particleToGrid(kStencils | kMassMomentum | kForces);
-      updateGrid();
-      gridToParticle(false);
-      particleToGrid(kMassMomentum);
-      gridVelocities();
-      computeStrainIncrements();
-      updateStresses();
-      break;
-  }
-  time_ += dt_;
-  ++step_;
-}
-
 Energies Solver::energies() const {
   const Particles& p = particles_;
   const Vec2 e = orderedSum(threads_, static_cast<long>(p.size()), Vec2(Vec2::Zero()), [&](long i) {

@@ -54,8 +54,12 @@ class Solver {
   explicit Solver(Scene scene, int threads = 0);
   static constexpr std::size_t kParticlesPerThread = 4096;
 
-  // One explicit step: the phases of the scene's update scheme in order.
+  // One explicit step (mpm/step.cpp): the phases of the scene's update scheme in order; USL, the
+  // default, runs them fused into one pass over the particles (fused_transfer.cpp).
   void advance();
+  // The same step as the plain phase sequence, for every scheme (USL unfused): the reference
+  // the fused pass is tested against.
+  void advanceByPhases();
 
   // --- the phases ---
   void particleToGrid(unsigned transfer);
@@ -70,12 +74,14 @@ class Solver {
 
   // --- state ---
   const Scene& scene() const { return scene_; }
-  // Writable particles: the grid no longer holds their scatter (USL rebuilds it next step).
-  Particles& particles() {
-    gridHoldsState_ = false;
+  const Particles& particles() const { return particles_; }
+  // Particles to change between steps (tests, set-ups, restarts): the next step rebuilds the
+  // grid's scatter from them (rebuildGridNextStep) instead of the one the fused USL pass left.
+  Particles& editParticles() {
+    rebuildGridNextStep();
     return particles_;
   }
-  const Particles& particles() const { return particles_; }
+  void rebuildGridNextStep() { gridHoldsState_ = false; }
   const GridFields& grid() const { return grid_; }
   const std::vector<ConditionState>& conditions() const { return conditions_; }
   const std::vector<LoadState>& loads() const { return loads_; }
@@ -143,6 +149,7 @@ class Solver {
   std::vector<std::pair<int, int>> touched_;       // per scratch buffer: nodes [lo, hi) not zero
   void sumTouchedNodes();
 
+  void phases();  // the plain phase sequence of the scheme (step.cpp)
   void applyVelocityConditions(bool reactions);
   void addLoads();
   [[noreturn]] void throwLeftGrid(std::size_t p) const;

@@ -49,12 +49,7 @@ ScatterFn scatterFor(unsigned what) {
 }
 
 ScatterFn scatterFor(ShapeFunction f, unsigned what) {
-  switch (f) {
-    case ShapeFunction::Linear: return scatterFor<ShapeFunction::Linear>(what);
-    case ShapeFunction::UGimp: return scatterFor<ShapeFunction::UGimp>(what);
-    case ShapeFunction::BSpline2: return scatterFor<ShapeFunction::BSpline2>(what);
-  }
-  return nullptr;
+  return withShapeFunction(f, [what]<ShapeFunction F>() { return scatterFor<F>(what); });
 }
 
 template <ShapeFunction F, bool WithStrain>
@@ -92,18 +87,8 @@ using GatherFn = std::size_t (*)(const Grid&, const Vec2&, const Vec2&, const Gr
 using StrainFn = void (*)(const Grid&, const Vec2&, const Vec2&, const GridFields&, Particles&, std::size_t, std::size_t,
                           double);
 
-template <ShapeFunction F>
-GatherFn gatherFor(bool withStrain) {
-  return withStrain ? gather<F, true> : gather<F, false>;
-}
-
 GatherFn gatherFor(ShapeFunction f, bool withStrain) {
-  switch (f) {
-    case ShapeFunction::Linear: return gatherFor<ShapeFunction::Linear>(withStrain);
-    case ShapeFunction::UGimp: return gatherFor<ShapeFunction::UGimp>(withStrain);
-    case ShapeFunction::BSpline2: return gatherFor<ShapeFunction::BSpline2>(withStrain);
-  }
-  return nullptr;
+  return withShapeFunction(f, [withStrain]<ShapeFunction F>() -> GatherFn { return withStrain ? gather<F, true> : gather<F, false>; });
 }
 
 }  // namespace
@@ -180,9 +165,7 @@ void Solver::addScatterBuffer(int t, unsigned what, int lo, int hi) {
 
 void Solver::computeStrainIncrements() {
   const std::size_t count = particles_.size();
-  StrainFn fn = strainIncrements<ShapeFunction::Linear>;
-  if (scene_.solver.shapeFunction == ShapeFunction::UGimp) fn = strainIncrements<ShapeFunction::UGimp>;
-  if (scene_.solver.shapeFunction == ShapeFunction::BSpline2) fn = strainIncrements<ShapeFunction::BSpline2>;
+  const StrainFn fn = withShapeFunction(scene_.solver.shapeFunction, []<ShapeFunction F>() -> StrainFn { return strainIncrements<F>; });
 #pragma omp parallel num_threads(threads_)
   {
     const auto [b, e] = detail::partRange(count, omp_get_thread_num(), omp_get_num_threads());

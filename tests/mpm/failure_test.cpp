@@ -34,7 +34,7 @@ TEST(Failure, ParticleLeavingTheGridIsReportedWithIdPositionAndStep) {
 TEST(Failure, NanIsReportedWithStepAndParticle) {
   Solver solver(tensionBlock(), 1);
   solver.advance();
-  solver.particles().velocity[7] = Vec2(NAN, 0.0);
+  solver.editParticles().velocity[7] = Vec2(NAN, 0.0);
   try {
     solver.advance();
     FAIL() << "no failure reported";

@@ -93,7 +93,7 @@ TEST(ParticleToGrid, ConservesMassAndMomentumAndInternalForcesSumToZero) {
     s.loads.clear();
     s.solver.shapeFunction = f;
     Solver solver(s, 1);
-    auto& p = solver.particles();
+    auto& p = solver.editParticles();
     double mass = 0.0;
     Vec2 momentum = Vec2::Zero();
     for (std::size_t i = 0; i < p.size(); ++i) {

@@ -65,7 +65,7 @@ struct BarSetup {
   }
   // v(X, 0) = v0 cos(pi (X - x0) / L): mode 1, u(X, t) = v0 / omega cos(...) sin(omega t).
   void setInitialVelocity(Solver& solver) const {
-    auto& p = solver.particles();
+    auto& p = solver.editParticles();
     for (std::size_t i = 0; i < p.size(); ++i) p.velocity[i] = Vec2(v0() * mode(p.position[i][0]), 0.0);
   }
 };
