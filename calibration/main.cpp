@@ -1,7 +1,7 @@
 // ecm-calibrate: parameters of the band's damage law (Eq. (13)) from a fracture energy, a target
 // softening curve, or a crack-band element size. A thin main over the calibration library;
-// see calibration/README.md. Exit status: 0 done, 1 bad input, 2 no crack-band E_p exists
-// (H >= H_crit), 3 output could not be written.
+// see calibration/README.md. Exit status (io/cli_exit.hpp): 0 done, 1 no result (no crack-band
+// E_p exists: H >= H_crit) or an output could not be written, 2 bad input or output folder.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
@@ -10,9 +10,9 @@
 #include "calibration/calibration_error.hpp"
 #include "calibration/calibration_input.hpp"
 #include "calibration/calibration_run.hpp"
+#include "io/cli_exit.hpp"
 #include "io/material_yaml.hpp"
 #include "io/output_dir.hpp"
-#include "io/output_error.hpp"
 #include "material/parameter_check.hpp"
 #include "material/smeared_crack.hpp"
 
@@ -21,14 +21,17 @@ namespace {
 using namespace ecm;
 using namespace ecm::calibration;
 
-constexpr int kBadInput = 1, kNoRegularisation = 2, kOutputFailed = 3;
+using io::kExitBadInput, io::kExitRunFailed;
 
-int run(const CalibrationInput& cli, const std::optional<std::filesystem::path>& inputFile) {
+// `running` turns true once the input is read and the output folder is ready: a failure from
+// there on is the run's (exit 1), one before it bad input (exit 2).
+int run(const CalibrationInput& cli, const std::optional<std::filesystem::path>& inputFile, bool& running) {
   CalibrationInput in;
   if (inputFile) in = readCalibrationInput(*inputFile);
   overlay(in, cli);
   const CalibrationPlan plan = planCalibration(in);
   io::prepareOutputDir(plan.out);
+  running = true;
   const CalibrationResult result = runCalibration(plan);
   printTable(result, std::cout);
   writeOutputs(result, plan.out);
@@ -38,7 +41,7 @@ int run(const CalibrationInput& cli, const std::optional<std::filesystem::path>&
     io::writeMaterialFile(calibratedMaterial(result, plan), *plan.writeMaterial);
     std::cout << "  material written to " << plan.writeMaterial->string() << "\n";
   }
-  return 0;
+  return io::kExitDone;
 }
 
 }  // namespace
@@ -50,7 +53,7 @@ int main(int argc, char** argv) {
       "  fit n, E_p:  --E 32000 --ft 3.0 --GF 0.11 --h 0.05 --fit hordijk   (or --fit-csv FILE)\n"
       "  forward:     --E 32000 --ft 3.0 --h 0.05 --Ep 8.184 --n 0.128\n"
       "  crack band:  --E 32000 --ft 3.0 --GF 0.11 --n 0.128 --smeared-H 100\n"
-      "Exit status: 0 done, 1 bad input, 2 no crack-band E_p (H >= H_crit), 3 output failed."};
+      "Exit status: 0 done, 1 no result (no crack-band E_p: H >= H_crit) or an output not written, 2 bad input."};
   app.set_help_flag("--help", "Print this help and exit");
 
   std::map<std::string, double> values;
@@ -69,7 +72,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : kBadInput;  // --help exits 0
+    return io::commandLineStatus(app.exit(e));  // --help exits 0
   }
 
   CalibrationInput cli;
@@ -78,7 +81,7 @@ int main(int argc, char** argv) {
   if (app.count("--fit") > 0) {
     if (fit != "hordijk") {
       std::cerr << "ecm-calibrate: error: --fit '" << fit << "' is not one of: hordijk (use --fit-csv FILE for measured points)\n";
-      return kBadInput;
+      return kExitBadInput;
     }
     cli.fit = fit;
   }
@@ -88,27 +91,25 @@ int main(int argc, char** argv) {
   if (app.count("--name") > 0) cli.name = name;
   if (app.count("--hypothesis") > 0) cli.hypothesis = hypothesis;
 
+  bool running = false;
   try {
-    return run(cli, inputFile);
+    return run(cli, inputFile, running);
   } catch (const RegularisationError& e) {
     std::cerr.precision(10);
     std::cerr << "ecm-calibrate: no softening modulus E_p exists: " << e.what() << "\n  H_crit = " << e.criticalSize
               << " mm\n  needed tensile strength = " << e.requiredStrength << " MPa\n";
-    return kNoRegularisation;
+    return kExitRunFailed;
   } catch (const io::InputError& e) {
     std::cerr << e.what() << "\n";
-    return kBadInput;
+    return kExitBadInput;
   } catch (const CalibrationError& e) {
     std::cerr << "ecm-calibrate: error: " << e.what() << "\n";
-    return kBadInput;
+    return kExitBadInput;
   } catch (const ParameterError& e) {
     std::cerr << "ecm-calibrate: error: " << e.what() << "\n";
-    return kBadInput;
-  } catch (const io::OutputError& e) {
+    return kExitBadInput;
+  } catch (const std::exception& e) {  // io::OutputError among them
     std::cerr << "ecm-calibrate: error: " << e.what() << "\n";
-    return kOutputFailed;
-  } catch (const std::exception& e) {
-    std::cerr << "ecm-calibrate: error: " << e.what() << "\n";
-    return kOutputFailed;
+    return running ? kExitRunFailed : kExitBadInput;
   }
 }

@@ -1,6 +1,8 @@
 // ecm-point: drive one material point along a strain path.
 //   ecm-point SCENE.yaml [--out DIR]
 //   ecm-point --study STUDY.yaml [--out DIR]     (the snap-back study over effective sizes)
+// Exit status (io/cli_exit.hpp): 0 done, 1 the run stopped early or an output could not be
+// written (outputs so far kept), 2 bad input or output folder.
 #include <CLI/CLI.hpp>
 
 #include <iostream>
@@ -8,6 +10,7 @@
 #include "driver/point_output.hpp"
 #include "driver/point_scene_yaml.hpp"
 #include "driver/snapback_study.hpp"
+#include "io/cli_exit.hpp"
 #include "io/output_dir.hpp"
 #include "io/progress.hpp"
 
@@ -17,20 +20,27 @@ int main(int argc, char** argv) {
   app.add_option("scene", scene, "point scene (YAML)")->check(CLI::ExistingFile);
   app.add_option("--study", study, "snap-back study over effective sizes (YAML)")->check(CLI::ExistingFile);
   app.add_option("--out", out, "output folder (default out/point/<scene name> or out/snapback-study)");
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return ecm::io::commandLineStatus(app.exit(e));
+  }
   if (scene.empty() == study.empty()) {
     std::cerr << "ecm-point: give either a SCENE.yaml or --study STUDY.yaml\n" << app.help();
-    return 1;
+    return ecm::io::kExitBadInput;
   }
+  bool running = false;  // input read and output folder ready: a failure from here on is the run's
   try {
     if (!study.empty()) {
       const ecm::driver::SnapBackStudy s = ecm::driver::loadSnapBackStudy(study);
       const auto dir = ecm::io::prepareOutputDir(out.empty() ? "out/snapback-study" : out);
+      running = true;
       const ecm::driver::SnapBackStudyResult r = ecm::driver::runSnapBackStudy(s, dir, std::cout);
-      return r.allRunsCompleted ? 0 : 2;
+      return r.allRunsCompleted ? ecm::io::kExitDone : ecm::io::kExitRunFailed;
     }
     const ecm::driver::PointScene s = ecm::driver::loadPointScene(scene);
     const auto dir = ecm::io::prepareOutputDir(out.empty() ? "out/point/" + std::filesystem::path(scene).stem().string() : out);
+    running = true;
     ecm::io::Progress::Options options;
     options.label = "ecm-point " + s.name;
     ecm::io::Progress progress(ecm::driver::totalIncrements(s), options);
@@ -49,11 +59,11 @@ int main(int argc, char** argv) {
     std::cout << "outputs in " << dir.string() << "\n";
     if (!run.completed) {
       std::cerr << "ecm-point: run stopped: " << run.failure << " (everything up to it is in " << dir.string() << ")\n";
-      return 2;
+      return ecm::io::kExitRunFailed;
     }
-    return 0;
+    return ecm::io::kExitDone;
   } catch (const std::exception& e) {
     std::cerr << "ecm-point: " << e.what() << "\n";
-    return 1;
+    return running ? ecm::io::kExitRunFailed : ecm::io::kExitBadInput;
   }
 }

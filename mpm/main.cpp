@@ -2,8 +2,9 @@
 //   ecm-mpm SCENE.yaml [-o|--out DIR] [--threads N] [--no-vtu] [--no-plot] [--quiet] [--max-steps N]
 //   ecm-mpm SCENE.yaml --restart DIR [...]      continue the run of DIR from DIR/checkpoint.bin
 // SIGINT / SIGTERM stop the run after the current step with a checkpoint (a second one kills it).
-// Exit status: 0 completed, 1 the run failed (see summary.json), 2 bad input, output folder or
-// checkpoint, 3 stopped before the end with a checkpoint (signal or --max-steps): resume it.
+// Exit status (io/cli_exit.hpp): 0 completed, 1 the run failed (see summary.json), 2 bad input
+// (command line included), output folder or checkpoint, 3 stopped before the end with a
+// checkpoint (signal or --max-steps): resume it.
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
@@ -13,6 +14,7 @@
 #include <iterator>
 
 #include "io/checksum.hpp"
+#include "io/cli_exit.hpp"
 #include "io/output_error.hpp"
 #include "io/yaml_input.hpp"
 #include "mpm/checkpoint.hpp"
@@ -84,7 +86,11 @@ int main(int argc, char** argv) {
   app.add_flag("--no-vtu", noVtu, "do not write VTU particle snapshots");
   app.add_flag("--no-plot", noPlot, "do not render the load-displacement PNG");
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return ecm::io::commandLineStatus(app.exit(e));
+  }
 
   try {
     ecm::mpm::Scene scene = ecm::mpm::loadSceneFile(scenePath);
@@ -94,7 +100,7 @@ int main(int argc, char** argv) {
       if (!outDir.empty() && normal(outDir) != normal(restartDir)) {
         std::fprintf(stderr, "error: --restart %s continues that folder; --out %s names another one\n",
                      restartDir.c_str(), outDir.c_str());
-        return 2;
+        return ecm::io::kExitBadInput;
       }
       outDir = restartDir;
       options.restart = true;
@@ -118,16 +124,16 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "stopped at step %ld (%s); checkpoint %s\nresume with: %s\n", r.steps,
                    stopRequested.load() ? "signal" : "--max-steps", r.checkpoint.string().c_str(),
                    options.resumeCommand.c_str());
-      return 3;
+      return ecm::io::kExitStopped;
     }
     if (!r.completed) {
       std::fprintf(stderr, "error: %s\n", r.error.c_str());
       if (!r.checkpoint.empty())
         std::fprintf(stderr, "the last checkpoint is %s (resume with: %s)\n", r.checkpoint.string().c_str(),
                      options.resumeCommand.c_str());
-      return 1;
+      return ecm::io::kExitRunFailed;
     }
-    return 0;
+    return ecm::io::kExitDone;
   } catch (const ecm::io::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
   } catch (const ecm::io::OutputError& e) {
@@ -137,5 +143,5 @@ int main(int argc, char** argv) {
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s: %s\n", scenePath.c_str(), e.what());
   }
-  return 2;
+  return ecm::io::kExitBadInput;  // runScene reports a failure during the run in its result
 }

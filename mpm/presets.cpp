@@ -7,7 +7,8 @@ namespace ecm::mpm {
 namespace {
 
 // Measured on the DEN 4b coarse scene, whole run (data/studies/den-coarse-presets.yaml), errors
-// against 3 x 3 particles per cell at CFL 0.25, CPU time of one thread (README, "Presets"):
+// against 3 x 3 particles per cell at CFL 0.25, CPU time of one thread (docs/performance.md,
+// "Presets"):
 //   fast      1 x 1, CFL 0.5    peak +0.3 %, dissipated energy +3.7 %,   9.6 s
 //   balanced  2 x 2, CFL 0.5    peak -0.2 %, dissipated energy -0.4 %,  33 s
 //   accurate  2 x 2, CFL 0.25   peak -0.04 %, dissipated energy +0.13 %, 68 s

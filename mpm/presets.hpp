@@ -1,7 +1,7 @@
 #pragma once
 // Speed-versus-accuracy presets of ecm-mpm (scene key `preset: fast | balanced | accurate`),
 // chosen from the measured Pareto front of data/studies/den-coarse-presets.yaml (the whole DEN
-// 4b scene on the coarse mesh; figures in the README, "Presets"). A preset sets the
+// 4b scene on the coarse mesh; figures in docs/performance.md, "Presets"). A preset sets the
 // discretisation knobs below; a scene that names one may not set them itself (one source for
 // each knob). The mesh (cell size) stays the scene's: it is geometry, and H follows it.
 #include <span>

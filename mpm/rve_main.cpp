@@ -4,12 +4,14 @@
 // by phase; a parameter file holds only a top-level `rve:` map (the keys of an rve body without
 // the material names) and its circles are drawn. Outputs in DIR: rve_stats.json (parameters and
 // statistics of every sample), inclusions.csv (sample, x, y, diameter in mm), phases.csv and
-// phases.png (+ .gp). Exit status: 0 written, 2 bad input (infeasible target included) or output.
+// phases.png (+ .gp). Exit status (io/cli_exit.hpp): 0 written, 1 an output could not be written
+// (what was written is kept), 2 bad input (infeasible target included) or output folder.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 #include <nlohmann/json.hpp>
 
+#include "io/cli_exit.hpp"
 #include "io/csv_writer.hpp"
 #include "io/gnuplot.hpp"
 #include "io/json_summary.hpp"
@@ -45,7 +47,9 @@ nlohmann::json toJson(const mpm::RveSample& s) {
           {"dropped", st.dropped}};
 }
 
-int run(const std::string& input, const std::filesystem::path& out) {
+// `running` turns true once the input is read and the output folder is ready: a failure from
+// there on is the run's (exit 1), one before it bad input (exit 2).
+int run(const std::string& input, const std::filesystem::path& out, bool& running) {
   const io::YamlMap map = io::loadYamlFile(input);
   const bool isScene = map.has("bodies");
   std::vector<mpm::RveParams> params;
@@ -69,6 +73,7 @@ int run(const std::string& input, const std::filesystem::path& out) {
   }
 
   io::prepareOutputDir(out);
+  running = true;
   nlohmann::json stats = {{"input", input}, {"samples", nlohmann::json::array()}};
   {
     io::CsvWriter inc(out / "inclusions.csv", {"sample", "x_mm", "y_mm", "diameter_mm"});
@@ -124,7 +129,7 @@ int run(const std::string& input, const std::filesystem::path& out) {
                  s.params.side, static_cast<unsigned long long>(s.params.seed), s.stats.achievedFraction,
                  s.stats.targetFraction, s.stats.itzFraction, s.stats.count, s.stats.minDiameter, s.stats.meanDiameter,
                  s.stats.maxDiameter);
-  return 0;
+  return io::kExitDone;
 }
 
 }  // namespace
@@ -136,15 +141,21 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   app.add_option("-o,--out", out, "output folder (default: rve-out)");
-  CLI11_PARSE(app, argc, argv);
   try {
-    return run(input, out);
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return ecm::io::commandLineStatus(app.exit(e));
+  }
+  bool running = false;
+  try {
+    return run(input, out, running);
   } catch (const ecm::io::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
+    return ecm::io::kExitBadInput;
   } catch (const ecm::io::OutputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s: %s\n", input.c_str(), e.what());
   }
-  return 2;
+  return running ? ecm::io::kExitRunFailed : ecm::io::kExitBadInput;
 }

@@ -32,7 +32,7 @@ for model in tail second-tail; do
     [[ -f $out/$mesh-$model/history.csv ]] && runs+=("$mesh-$model")
   done
 done
-[[ ${#runs[@]} -gt 0 ]] || { echo "error: no MESH-tail or MESH-second-tail run in $out" >&2; exit 1; }
+[[ ${#runs[@]} -gt 0 ]] || { echo "error: no MESH-tail or MESH-second-tail run in $out" >&2; exit 2; }
 
 echo "## Runs"
 echo

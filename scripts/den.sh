@@ -15,7 +15,8 @@
 #         contrast                          smeared and crackband on the three meshes
 #         MESH-tail | tail                  the 4b scene of MESH pulled on to delta = 0.4 mm at the same
 #                                           22.2 mm/s, ended by stop_when once P < 10 % of its peak
-#                                           (the issue's end criterion; the fine one runs ~25 minutes)
+#                                           (the end criterion P < 0.1 P_peak of docs/den.md, "End of
+#                                           the run"; the fine one runs ~25 minutes)
 #         MESH-second | second               the 4b scene of MESH with the second-band option,
 #                                           data/den/den-4b-MESH-second-band.yaml (docs/model.md)
 #         MESH-second-tail | second-tail    the same pulled on as MESH-tail
@@ -68,7 +69,8 @@ sceneOf() {
     *-second) echo "data/den/den-4b-$mesh-second-band.yaml" ;;
     *-tail)
       # The time line's last segment (delta 0.032 mm at 3.44004e-3 s, 22.2 mm/s) extended to
-      # 0.4 mm (2.000004e-2 s), the shear held to then, and the issue's end criterion as stop_when.
+      # 0.4 mm (2.000004e-2 s), the shear held to then, and the end criterion P < 0.1 P_peak
+      # (docs/den.md) as stop_when.
       # (MESH-second-tail: the same from the second-band scene.)
       local base=data/den/den-4b-$mesh.yaml
       [[ $variant == second-tail ]] && base=data/den/den-4b-$mesh-second-band.yaml
@@ -105,7 +107,12 @@ for m in "${runs[@]}"; do
   rm -f "$out/$m"/{history.csv,summary.json,particles_final.csv}  # no stale results if the run cannot start
   $bin "$scene" --out "$out/$m" --no-vtu --threads "$threads" -q
   rc=$?
-  [[ $rc -le 1 ]] || echo "error: ecm-mpm could not run $scene (status $rc)" >&2
+  case $rc in  # ecm-mpm's exit status (README, "Exit status")
+    0 | 1) ;;  # completed, or failed with its outputs kept: in the table with its status
+    2) echo "error: ecm-mpm could not run $scene (bad input, status 2)" >&2 ;;
+    3) echo "warning: ecm-mpm stopped $scene with a checkpoint in $out/$m (resume with --restart)" >&2 ;;
+    *) echo "error: ecm-mpm ended $scene with status $rc" >&2 ;;
+  esac
 done
 
 # The results of every run in OUT_DIR (run now or before), coarse to fine.
@@ -342,5 +349,5 @@ echo "(peak P and delta from the output rows of history.csv; KE/W: kinetic over 
 echo " tmax: the largest while delta > 0 (tension phase), end: at the end;"
 echo " sym|dD|: mean |D(x) - D(rotated x)| over particles, 180 degrees about (100, 100);"
 echo " sym crk: fraction of cracked particles whose rotated image is cracked; spread: (max - min) / mean;"
-echo " end d, P/Ppk: delta at the last row and P there over the peak; the issue ends the pull at P/Ppk < 0.1)"
+echo " end d, P/Ppk: delta at the last row and P there over the peak; the DEN study ends the pull at P/Ppk < 0.1)"
 echo "written: $out/summary.json $out/load_displacement.png $(cd "$out" && ls contrast.png tail.png damage_*.png crack_*.png 2>/dev/null | sed "s|^|$out/|" | tr '\n' ' ')"

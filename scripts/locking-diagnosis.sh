@@ -26,7 +26,7 @@ threads=${DEN_THREADS:-2}
 bin=${DEN_BIN:-./build/mpm/ecm-mpm}
 [[ -x $bin ]] || { echo "error: $bin not built (cmake -S . -B build -G Ninja && ninja -C build)" >&2; exit 2; }
 scene=data/den/den-4b-$mesh.yaml
-[[ -f $scene ]] || { echo "error: no scene $scene (meshes: coarse, medium, fine)" >&2; exit 1; }
+[[ -f $scene ]] || { echo "error: no scene $scene (meshes: coarse, medium, fine)" >&2; exit 2; }
 mkdir -p "$out/scenes"
 times=$(awk 'BEGIN { s = ""; for (t = 0.002; t < 0.0065; t += 0.00025) s = s sprintf("%.5f, ", t); print s "0.0065" }')
 # The scene's own file, with particle snapshots; data/materials/ is found from the copy.

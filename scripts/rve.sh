@@ -54,7 +54,12 @@ for m in "${runs[@]}"; do
   rm -f "$out/$m"/{history.csv,summary.json,particles_*.csv}
   $bin "$scene" --out "$out/$m" --no-vtu --threads "$threads" -q
   rc=$?
-  [[ $rc -le 1 ]] || echo "error: ecm-mpm could not run $scene (status $rc)" >&2
+  case $rc in  # ecm-mpm's exit status (README, "Exit status")
+    0 | 1) ;;  # completed, or failed with its outputs kept: in the table with its status
+    2) echo "error: ecm-mpm could not run $scene (bad input, status 2)" >&2 ;;
+    3) echo "warning: ecm-mpm stopped $scene with a checkpoint in $out/$m (resume with --restart)" >&2 ;;
+    *) echo "error: ecm-mpm ended $scene with status $rc" >&2 ;;
+  esac
 done
 
 col() { head -1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }

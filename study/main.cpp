@@ -1,11 +1,14 @@
 // ecm-study: speed versus accuracy over a grid of scene settings (format in study/study.hpp).
 //   ecm-study STUDY.yaml [-o|--out DIR] [--threads N] [--list] [--resume] [--in-process] [-q]
-// Exit status: 0 every run completed, 1 some run failed (see study.csv), 2 bad input or output folder.
+// Exit status (io/cli_exit.hpp): 0 every run completed, 1 some run failed (see study.csv) or an
+// output could not be written once the runs had begun, 2 bad input or output folder.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 #include <iostream>
 
+#include "io/cli_exit.hpp"
+#include "io/output_dir.hpp"
 #include "io/output_error.hpp"
 #include "study/study.hpp"
 
@@ -21,8 +24,13 @@ int main(int argc, char** argv) {
   app.add_flag("--resume", resume, "reuse the MPM runs of DIR whose scene is unchanged (an interrupted study goes on)");
   app.add_flag("--in-process", inProcess, "run MPM scenes in this process (no per-run peak memory)");
   app.add_flag("-q,--quiet", quiet, "no line per run on stderr");
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return ecm::io::commandLineStatus(app.exit(e));
+  }
 
+  bool running = false;  // input read and output folder ready: a failure from here on is the runs'
   try {
     const ecm::study::Study study = ecm::study::loadStudyFile(studyPath);
     const std::vector<ecm::study::PlannedRun> plan = ecm::study::planStudy(study);
@@ -39,9 +47,11 @@ int main(int argc, char** argv) {
           std::printf("%3d%s  %-60s  %9.0f increments\n", r.id, r.reference ? "R" : " ", r.label.c_str(), work);
       }
       std::printf("%zu runs, %.3g %s in all\n", plan.size(), total, mpm ? "particle-updates (estimated)" : "increments");
-      return 0;
+      return ecm::io::kExitDone;
     }
     options.outputDir = outDir.empty() ? std::filesystem::path("out") / study.name : std::filesystem::path(outDir);
+    ecm::io::prepareOutputDir(options.outputDir);
+    running = true;
     options.isolate = !inProcess;
     options.resume = resume;
     options.progress = !quiet;
@@ -49,13 +59,14 @@ int main(int argc, char** argv) {
     const ecm::study::StudyResult r = ecm::study::runStudy(study, plan, options);
     std::fprintf(stderr, "%zu runs -> %s (study.csv, summary.json, pareto.png)\n", r.runs.size(),
                  options.outputDir.string().c_str());
-    return r.allCompleted ? 0 : 1;
+    return r.allCompleted ? ecm::io::kExitDone : ecm::io::kExitRunFailed;
   } catch (const ecm::io::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
+    return ecm::io::kExitBadInput;
   } catch (const ecm::io::OutputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s: %s\n", studyPath.c_str(), e.what());
   }
-  return 2;
+  return running ? ecm::io::kExitRunFailed : ecm::io::kExitBadInput;
 }

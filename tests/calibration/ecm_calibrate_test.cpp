@@ -1,6 +1,6 @@
-// End to end: the ecm-calibrate tool, its outputs and its exit codes.
+// End to end: the ecm-calibrate tool, its outputs and its exit codes (io/cli_exit.hpp: 0 done,
+// 1 no result or an output not written once the run had begun, 2 bad input).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
@@ -10,6 +10,7 @@
 
 #include "io/csv_reader.hpp"
 #include "io/material_yaml.hpp"
+#include "../run_tool.hpp"
 
 namespace {
 
@@ -27,12 +28,10 @@ class EcmCalibrate : public ::testing::Test {
 
   // Runs the tool with `args`; returns its exit status, stdout and stderr in out_/err_.
   int run(const std::string& args) {
-    const std::string cmd = std::string("'") + ECM_CALIBRATE + "' " + args + " > '" + (dir_ / "stdout").string() +
-                            "' 2> '" + (dir_ / "stderr").string() + "'";
-    const int status = std::system(cmd.c_str());
-    out_ = read(dir_ / "stdout");
-    err_ = read(dir_ / "stderr");
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    const ecm::test::ToolRun r = ecm::test::runTool(ECM_CALIBRATE, args, dir_);
+    out_ = r.out;
+    err_ = r.err;
+    return r.status;
   }
   static std::string read(const fs::path& p) {
     std::ifstream in(p);
@@ -104,32 +103,55 @@ TEST_F(EcmCalibrate, YamlInputWorksLikeTheCommandLine) {
   ASSERT_EQ(run("--input '" + in.string() + "'"), 0) << err_;
   EXPECT_NEAR(summary(out)["Ep"].get<double>(), 8.18, 0.02);
   std::ofstream(in, std::ios::app) << "colour: red\n";
-  EXPECT_EQ(run("--input '" + in.string() + "'"), 1);
+  EXPECT_EQ(run("--input '" + in.string() + "'"), ecm::io::kExitBadInput);
   EXPECT_NE(err_.find(in.string() + ":8: unknown key 'colour'"), std::string::npos) << err_;
 }
 
 TEST_F(EcmCalibrate, CrackBandBeyondHCritExitsWithTheNeededStrength) {
-  EXPECT_EQ(run("--E 32000 --ft 3.0 --GF 0.11 --n 0.128 --smeared-H 800 --out '" + (dir_ / "sm").string() + "'"), 2);
+  // A computation without a result: the run failed (1), the input is well formed.
+  EXPECT_EQ(run("--E 32000 --ft 3.0 --GF 0.11 --n 0.128 --smeared-H 800 --out '" + (dir_ / "sm").string() + "'"),
+            ecm::io::kExitRunFailed);
   EXPECT_NE(err_.find("H_crit = 782.2222222 mm"), std::string::npos) << err_;
   EXPECT_NE(err_.find("needed tensile strength = 2.966479395 MPa"), std::string::npos) << err_;
   EXPECT_EQ(run("--E 32000 --ft 3.0 --GF 0.11 --n 0.128 --smeared-H 100 --out '" + (dir_ / "ok").string() + "'"), 0)
       << err_;
 }
 
-TEST_F(EcmCalibrate, BadInputExitsNonZeroNamingValueAndBound) {
+TEST_F(EcmCalibrate, BadInputExitsTwoNamingValueAndBound) {
   const std::string base = "--E 32000 --ft 3.0 --h 0.05 --out '" + (dir_ / "bad").string() + "' ";
-  EXPECT_EQ(run(base + "--GF 0.11 --n 0.5"), 1);
+  constexpr int kBadInput = ecm::io::kExitBadInput;
+  EXPECT_EQ(run(base + "--GF 0.11 --n 0.5"), kBadInput);
   EXPECT_NE(err_.find("= 0.5 is outside the allowed range (0, 0.5)"), std::string::npos) << err_;
-  EXPECT_EQ(run(base + "--GF 0.000001 --n 0.128"), 1);
+  EXPECT_EQ(run(base + "--GF 0.000001 --n 0.128"), kBadInput);
   EXPECT_NE(err_.find("below the elastic minimum h ft^2/(2E) = 7.03125e-06 N/mm"), std::string::npos) << err_;
-  EXPECT_EQ(run(base + "--GF -0.11 --n 0.128"), 1);
-  EXPECT_EQ(run(base + "--GF nan --n 0.128"), 1);
+  EXPECT_EQ(run(base + "--GF -0.11 --n 0.128"), kBadInput);
+  EXPECT_EQ(run(base + "--GF nan --n 0.128"), kBadInput);
   const fs::path csv = dir_ / "two.csv";
   std::ofstream(csv) << "w,sigma\n0,3\n0.01,2\n";
-  EXPECT_EQ(run(base + "--GF 0.11 --fit-csv '" + csv.string() + "'"), 1);
+  EXPECT_EQ(run(base + "--GF 0.11 --fit-csv '" + csv.string() + "'"), kBadInput);
   EXPECT_NE(err_.find("at least 3"), std::string::npos) << err_;
-  EXPECT_EQ(run(base + "--GF 0.11 --fit spline"), 1);
-  EXPECT_EQ(run("--no-such-option 1"), 1);
+  EXPECT_EQ(run(base + "--GF 0.11 --fit spline"), kBadInput);
+  EXPECT_EQ(run("--input '" + (dir_ / "no-such.yaml").string() + "'"), kBadInput);
+  EXPECT_EQ(run("--no-such-option 1"), kBadInput);
+  EXPECT_NE(err_.find("no-such-option"), std::string::npos) << err_;  // CLI11's message
+  EXPECT_EQ(run("--help"), ecm::io::kExitDone);
+  EXPECT_NE(out_.find("Exit status"), std::string::npos) << out_;
+}
+
+TEST_F(EcmCalibrate, AnOutputFolderThatCannotBeUsedIsBadInput) {
+  std::ofstream(dir_ / "a-file") << "not a folder\n";
+  EXPECT_EQ(run("--E 32000 --ft 3.0 --GF 0.11 --h 0.05 --n 0.128 --out '" + (dir_ / "a-file").string() + "'"),
+            ecm::io::kExitBadInput);
+  EXPECT_NE(err_.find("a-file"), std::string::npos) << err_;
+}
+
+TEST_F(EcmCalibrate, AFileThatCannotBeWrittenOnceTheRunHasBegunFailsTheRunAndKeepsTheOutputs) {
+  const fs::path out = dir_ / "kept";
+  EXPECT_EQ(run("--E 32000 --nu 0.2 --ft 3.0 --GF 0.11 --h 0.05 --n 0.128 --out '" + out.string() +
+                "' --write-material '" + (dir_ / "no-such-folder" / "m.yaml").string() + "'"),
+            ecm::io::kExitRunFailed);
+  EXPECT_NE(err_.find("m.yaml"), std::string::npos) << err_;
+  EXPECT_TRUE(fs::exists(out / "summary.json"));
 }
 
 }  // namespace

@@ -34,7 +34,7 @@ PointScene sweepScene(const Case& c) {
   s.effectiveSize = c.size;
   PresetPath p;
   p.name = c.path;
-  p.strain = 5e-2;  // far beyond failure for H >= 10 mm; the user path
+  p.strain = 5e-2;  // far beyond failure for H >= 10 mm; the sweep's path in docs/point-driver.md
   p.shear = 5e-2;
   p.increments = c.increments;
   s.path = presetSegments(p, c.nu);
@@ -74,9 +74,9 @@ TEST(PointSweep, ClosedFormSnapBackSizes) {
   // The scan starts a hair inside the curve (x = 1 - 2e-5), so it sees a slope 1e-6 flatter.
   EXPECT_NEAR(closedFormSnapBackSize("uniaxial_tension", 0.0), test::kBandWidth * (test::kE + test::kEp) / test::kEp, 1e-3);
   EXPECT_NEAR(closedFormSnapBackSize("uniaxial_strain", 0.0), test::kBandWidth * (test::kE + test::kEp) / test::kEp, 1e-3);
-  // nu = 0.2 in tension: 323.65 mm (README; a scan in steps of 0.1 % in log x gives 323.6495).
+  // nu = 0.2 in tension: 323.65 mm (docs/point-driver.md; a scan in steps of 0.1 % in log x gives 323.6495).
   EXPECT_NEAR(closedFormSnapBackSize("uniaxial_tension", 0.2), 323.6495, 1e-3);
-  // The traction's maximum: f_t' at onset for nu = 0; 3.0570 MPa for nu = 0.2 (README), below
+  // The traction's maximum: f_t' at onset for nu = 0; 3.0570 MPa for nu = 0.2 (docs/point-driver.md), below
   // the laterally constrained bound f_t' / sqrt(1 - nu^2) = 3.0619 MPa.
   EXPECT_NEAR(tensionPeak(0.0), test::kFt, 1e-12);
   EXPECT_NEAR(tensionPeak(0.2), 3.0570, 1e-4);

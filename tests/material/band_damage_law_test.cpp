@@ -53,8 +53,9 @@ TEST(BandDamageLaw, UniaxialPeakStressIsTheTensileStrength) {
 }
 
 TEST(BandDamageLaw, WorkToCompleteFailureTimesBandWidthIsTheFractureEnergy) {
-  // Seed README: h x (work per unit volume to complete failure) = 0.110 N/mm; the same number
-  // from the work sum_i sigma d eps (trapezoid) minus the stored energy and from sum of dissipations.
+  // The paper's verified erratum, G_F = 0.11 N/mm (docs/model.md): h x (work per unit volume to
+  // complete failure) = 0.110 N/mm; the same number from the work sum_i sigma d eps (trapezoid)
+  // minus the stored energy and from sum of dissipations.
   DrivenLaw d;
   double work = 0.0, previousStress = 0.0, dExx = 1e-6;
   double stress = 0.0;

@@ -55,7 +55,8 @@ TEST(DamageFunction, IntegritySolveIsIrreversibleAndBounded) {
 }
 
 TEST(DamageFunction, PaperConcreteDissipatesTheFractureEnergy) {
-  // Seed README erratum: h int_0^1 F dD = 0.1100 N/mm for the paper's concrete.
+  // The paper's verified erratum, G_F = 0.11 N/mm (docs/model.md): h int_0^1 F dD = 0.1100 N/mm
+  // for the paper's concrete.
   EXPECT_NEAR(test::kBandWidth * dissipationToFailure(kLaw), 0.110, 0.0005 * 0.110);
 }
 

@@ -1,5 +1,6 @@
 // Consistent tangents against central finite differences (MTest's
-// CompareToNumericalTangentOperator): relative error <= 1e-6 in every state the issue lists.
+// CompareToNumericalTangentOperator): relative error <= 1e-6 in every regime of a point: elastic
+// loading, softening, unloading, reloading inside the envelope, and a cracked point under shear.
 #include <gtest/gtest.h>
 
 #include <functional>

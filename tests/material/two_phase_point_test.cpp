@@ -241,7 +241,7 @@ namespace {
 // failed band (sigma_L -> 0, hence sigma n -> 0 by Eq. (6)) leaves the bulk in uniaxial stress
 // along t, and by Eq. (4) the bulk takes the whole macroscopic eps_tt: d sigma_tt / d eps_tt =
 // E / (1 - f), however far past f_t'. A crack that turns away from the band a point chose at
-// onset is bridged by this stress (README, the DEN's tail). Expected value: E / (1 - f) with
+// onset is bridged by this stress (docs/den.md, "End of the run"). Expected value: E / (1 - f) with
 // f = h / H = 0.05 / 2.5: 32000 / 0.98 = 32653.06 MPa.
 TEST(TwoPhasePoint, AFailedBandCarriesNoTractionButLocksTheStressAlongIt) {
   test::EnrichedRun run(test::paperEnriched(), 2.5);

@@ -1,6 +1,6 @@
 // A displacement-controlled block in uniaxial tension, run quasi-statically, cracks through its
-// weakest row of cells and follows the closed form of the enriched point (issue: "matches
-// ecm-point within 1 %"). With nu = 0 the block is one-dimensional; the row of cells y in
+// weakest row of cells and follows the closed form of the enriched point (the curve ecm-point
+// traces for one point) within 1 %. With nu = 0 the block is one-dimensional; the row of cells y in
 // [40, 50] has f_t' 1 % below the rest, so the crack localises there (linear shape functions:
 // every particle of a cell sees the cell's strain). Elsewhere the block unloads elastically, so
 // the top displacement is delta = sigma L / E + w(sigma), w the band's inelastic opening of the

@@ -75,8 +75,8 @@ TEST(Structural, TensionBlockSceneCracksAtTheLigament) {
               j["cracked_particles"].get<int>(), r.wallTime);
 }
 
-// The DEN (Nooru-Mohamed's panel, load path 4b), each mesh run in full: the
-// mesh-objectivity and quasi-static criteria of the issue, against the coarse run's values
+// The DEN (Nooru-Mohamed's panel, load path 4b), each mesh run in full: the mesh-objectivity
+// and quasi-static criteria of docs/den.md ("The three meshes"), against the coarse run's values
 // (scripts/den.sh, 2 threads, summary.json: peak 18518.4 N, dissipated 980.1 N mm; the medium
 // and fine meshes are within 1 % and 5 % of them). Criteria: peak within 5 %, dissipated energy
 // within 10 %, kinetic energy below 1 % of the external work while the top is pulled.

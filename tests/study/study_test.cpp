@@ -267,7 +267,7 @@ TEST(Study, PointIncrementsAgainstTheClosedForm) {
   // docs/point-driver.md), with no increment end in between; 2000 increments put one there.
   EXPECT_GE(r.runs[0].metrics[0], r.runs[1].metrics[0] * (1.0 - 1e-4)) << std::setprecision(12) << r.runs[0].metrics[0] << " " << r.runs[1].metrics[0];  // a tie
   EXPECT_GT(r.runs[1].metrics[0], r.runs[2].metrics[0]);
-  EXPECT_NEAR(r.reference["peak_stress_MPa"].get<double>(), 3.057, 1e-3);  // README: nu = 0.2 peak
+  EXPECT_NEAR(r.reference["peak_stress_MPa"].get<double>(), 3.057, 1e-3);  // nu = 0.2 peak: docs/point-driver.md
 }
 
 }  // namespace

@@ -1,0 +1,22 @@
+#pragma once
+// The exit status of every tool (ecm-point, ecm-calibrate, ecm-mpm, ecm-rve, ecm-study):
+//   0 done;
+//   1 the run failed or stopped early, outputs so far kept (a simulation failure, a point that
+//     did not converge, a computation without a result, an output file that could not be
+//     written once the run had begun);
+//   2 bad input: a missing or unreadable file, an unknown key, a wrong type, a value out of
+//     range, a bad command line, an output folder that cannot be used;
+//   3 stopped on request with a checkpoint (ecm-mpm: a signal or --max-steps): resume it.
+// Free of CLI11: each main catches CLI::ParseError and passes app.exit(e) to commandLineStatus.
+
+namespace ecm::io {
+
+inline constexpr int kExitDone = 0, kExitRunFailed = 1, kExitBadInput = 2, kExitStopped = 3;
+
+// The status of a command line CLI11 refused or answered: CLI11's own code (what app.exit(e)
+// returns, after printing the message on stderr or the help on stdout) is 0 for --help and
+// non-zero for every error (105 for a missing file of CLI::ExistingFile, 106 for a missing
+// argument, ...); every error is bad input.
+constexpr int commandLineStatus(int cli11ExitCode) { return cli11ExitCode == 0 ? kExitDone : kExitBadInput; }
+
+}  // namespace ecm::io

@@ -1,0 +1,123 @@
+// End to end: the exit status of ecm-mpm and ecm-rve (io/cli_exit.hpp): 0 completed, 1 the run
+// failed (outputs kept), 2 bad input (a missing file, a bad value, a bad command line, an output
+// folder that cannot be used), 3 stopped with a checkpoint (ecm-mpm: a signal or --max-steps).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "../io/temp_dir.hpp"
+#include "../run_tool.hpp"
+
+namespace ecm::mpm::test {
+namespace {
+
+namespace fs = std::filesystem;
+using ecm::test::expectContains;
+using ecm::test::readFile;
+using ecm::test::runTool;
+using ecm::test::shellQuoted;
+using ecm::test::TempDir;
+using ecm::test::ToolRun;
+
+const fs::path kBlock = fs::path(ECM_SOURCE_DIR) / "data" / "mpm" / "tension-block.yaml";
+
+ToolRun mpm(const std::string& args, const TempDir& tmp) { return runTool(ECM_MPM, args, tmp.path()); }
+
+// A free elastic square thrown at 1e6 mm/s across a 10 mm grid: it leaves the grid within the
+// first 1e-5 s of its 1e-4 s.
+const char* kThrownSquare =
+    "name: thrown\n"
+    "grid: {origin: [0, 0], cell_size: [1, 1], cells: [10, 6]}\n"
+    "thickness: 1\n"
+    "particles_per_cell: 2\n"
+    "materials:\n"
+    "  - {name: elastic, model: linear_elastic, hypothesis: plane_stress, youngs_modulus: 32000,\n"
+    "     poisson_ratio: 0.2, density: 2.4e-9}\n"
+    "bodies:\n"
+    "  - {rectangle: {min: [2, 2], max: [4, 4]}, material: elastic, initial_velocity: [1.0e6, 0]}\n"
+    "end_time: 1.0e-4\n"
+    "output_interval: 1.0e-6\n";
+
+TEST(EcmMpm, AMissingSceneFileIsBadInput) {
+  TempDir tmp;
+  const ToolRun r = mpm(shellQuoted(tmp.path() / "no-such-scene.yaml"), tmp);
+  EXPECT_EQ(r.status, ecm::io::kExitBadInput) << r.err;  // CLI11 alone would exit 105
+  expectContains(r.err, "no-such-scene.yaml");           // CLI11's message
+}
+
+TEST(EcmMpm, ABadCommandLineIsBadInputAndHelpIsDone) {
+  TempDir tmp;
+  EXPECT_EQ(mpm("", tmp).status, ecm::io::kExitBadInput);  // no scene
+  const ToolRun threads = mpm(shellQuoted(kBlock) + " --threads=-1", tmp);
+  EXPECT_EQ(threads.status, ecm::io::kExitBadInput);
+  expectContains(threads.err, "threads");
+  EXPECT_EQ(mpm(shellQuoted(kBlock) + " --preset no-such-preset", tmp).status, ecm::io::kExitBadInput);
+  EXPECT_EQ(mpm(shellQuoted(kBlock) + " --no-such-option", tmp).status, ecm::io::kExitBadInput);
+  const ToolRun help = mpm("--help", tmp);
+  EXPECT_EQ(help.status, ecm::io::kExitDone);
+  expectContains(help.out, "--restart");
+}
+
+TEST(EcmMpm, ABadSceneValueIsBadInputWithTheLine) {
+  TempDir tmp;
+  const fs::path scene = tmp.write("bad.yaml", std::string(kThrownSquare) + "colour: red\n");
+  const ToolRun r = mpm(shellQuoted(scene) + " -q --out " + shellQuoted(tmp.path() / "out"), tmp);
+  EXPECT_EQ(r.status, ecm::io::kExitBadInput);
+  expectContains(r.err, "bad.yaml:12: unknown key 'colour'");
+}
+
+TEST(EcmMpm, AnOutputFolderThatCannotBeUsedIsBadInput) {
+  TempDir tmp;
+  const fs::path file = tmp.write("a-file", "not a folder\n");
+  const ToolRun r = mpm(shellQuoted(kBlock) + " -q --no-vtu --no-plot --out " + shellQuoted(file), tmp);
+  EXPECT_EQ(r.status, ecm::io::kExitBadInput);
+  expectContains(r.err, "a-file");
+}
+
+TEST(EcmMpm, AFailedRunExitsOneWithItsOutputs) {
+  TempDir tmp;
+  const fs::path scene = tmp.write("thrown.yaml", kThrownSquare);
+  const fs::path out = tmp.path() / "out";
+  const ToolRun r = mpm(shellQuoted(scene) + " -q --no-vtu --no-plot --out " + shellQuoted(out), tmp);
+  EXPECT_EQ(r.status, ecm::io::kExitRunFailed) << r.err;
+  expectContains(r.err, "left the grid");
+  const auto j = nlohmann::json::parse(readFile(out / "summary.json"));
+  EXPECT_EQ(j["status"], "failed");
+  EXPECT_TRUE(fs::exists(out / "history.csv"));
+}
+
+TEST(EcmMpm, MaxStepsStopsWithACheckpointThatResumesToCompletion) {
+  TempDir tmp;
+  const fs::path out = tmp.path() / "out";
+  const std::string args = shellQuoted(kBlock) + " -q --no-vtu --no-plot -t 1";
+  const ToolRun stopped = mpm(args + " --max-steps 20 --out " + shellQuoted(out), tmp);
+  EXPECT_EQ(stopped.status, ecm::io::kExitStopped) << stopped.err;
+  expectContains(stopped.err, "resume with:");
+  EXPECT_TRUE(fs::exists(out / "checkpoint.bin"));
+  const ToolRun resumed = mpm(args + " --restart " + shellQuoted(out), tmp);
+  EXPECT_EQ(resumed.status, ecm::io::kExitDone) << resumed.err;
+  EXPECT_FALSE(fs::exists(out / "checkpoint.bin"));  // a completed run removes it
+}
+
+TEST(EcmRve, AMissingInputFileIsBadInput) {
+  TempDir tmp;
+  const ToolRun r = runTool(ECM_RVE, shellQuoted(tmp.path() / "no-such-rve.yaml"), tmp.path());
+  EXPECT_EQ(r.status, ecm::io::kExitBadInput) << r.err;
+  expectContains(r.err, "no-such-rve.yaml");
+}
+
+TEST(EcmRve, ABadValueIsBadInputWithTheLine) {
+  TempDir tmp;
+  const fs::path params = tmp.write("params.yaml",
+                                    "rve:\n"
+                                    "  side: 10\n"
+                                    "  seed: -1\n");
+  const ToolRun r = runTool(ECM_RVE, shellQuoted(params) + " --out " + shellQuoted(tmp.path() / "out"), tmp.path());
+  EXPECT_EQ(r.status, ecm::io::kExitBadInput) << r.err;
+  expectContains(r.err, "params.yaml:3");
+}
+
+}  // namespace
+}  // namespace ecm::mpm::test

@@ -1,0 +1,97 @@
+// End to end: the ecm-study tool's exit status (io/cli_exit.hpp): 0 every run completed, 1 some
+// run failed, 2 bad input (a missing file, a bad key or value, a bad command line).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "../io/temp_dir.hpp"
+#include "../run_tool.hpp"
+
+namespace ecm::study::test {
+namespace {
+
+namespace fs = std::filesystem;
+using ecm::test::expectContains;
+using ecm::test::runTool;
+using ecm::test::shellQuoted;
+using ecm::test::TempDir;
+using ecm::test::ToolRun;
+
+ToolRun study(const std::string& args, const TempDir& tmp) { return runTool(ECM_STUDY, args, tmp.path()); }
+
+// Two increment counts of the enriched point in uniaxial tension (a few milliseconds).
+std::string pointStudy(const std::string& extra = "") {
+  return "name: point-exit\n"
+         "kind: point\n"
+         "scene: " + std::string(ECM_SOURCE_DIR) + "/data/point/uniaxial-tension-H10.yaml\n"
+         "knobs:\n"
+         "  path.increments: [20, 200]\n"
+         "reference: {closed_form: uniaxial_tension}\n" + extra;
+}
+
+TEST(EcmStudy, AMissingStudyFileIsBadInput) {
+  TempDir tmp;
+  const ToolRun r = study(shellQuoted(tmp.path() / "no-such-study.yaml"), tmp);
+  EXPECT_EQ(r.status, ecm::io::kExitBadInput) << r.err;  // CLI11 alone would exit 105
+  expectContains(r.err, "no-such-study.yaml");           // CLI11's message
+}
+
+TEST(EcmStudy, ABadCommandLineIsBadInputAndHelpIsDone) {
+  TempDir tmp;
+  EXPECT_EQ(study("", tmp).status, ecm::io::kExitBadInput);  // no study file
+  const fs::path file = tmp.write("study.yaml", pointStudy());
+  EXPECT_EQ(study(shellQuoted(file) + " --no-such-option", tmp).status, ecm::io::kExitBadInput);
+  const ToolRun help = study("--help", tmp);
+  EXPECT_EQ(help.status, ecm::io::kExitDone);
+  expectContains(help.out, "--resume");
+}
+
+TEST(EcmStudy, AnUnknownKeyIsBadInputWithTheLine) {
+  TempDir tmp;
+  const fs::path file = tmp.write("study.yaml", pointStudy("repeats: 2\n"));
+  const ToolRun r = study(shellQuoted(file) + " --list", tmp);
+  EXPECT_EQ(r.status, ecm::io::kExitBadInput);
+  expectContains(r.err, "study.yaml:7: unknown key 'repeats'");
+}
+
+TEST(EcmStudy, ACompletedStudyAndItsListAreDone) {
+  TempDir tmp;
+  const fs::path file = tmp.write("study.yaml", pointStudy());
+  const ToolRun list = study(shellQuoted(file) + " --list", tmp);
+  EXPECT_EQ(list.status, ecm::io::kExitDone) << list.err;
+  expectContains(list.out, "2 runs");
+  const ToolRun r = study(shellQuoted(file) + " -q --out " + shellQuoted(tmp.path() / "out"), tmp);
+  EXPECT_EQ(r.status, ecm::io::kExitDone) << r.err;
+  EXPECT_TRUE(fs::exists(tmp.path() / "out" / "study.csv"));
+}
+
+// H = 500 mm is beyond the snap-back size (195.55 mm): with snap_back: stop every run stops at
+// the limit point. The study itself completes: its table is written, the status says the runs failed.
+TEST(EcmStudy, FailedRunsExitOneWithTheTable) {
+  TempDir tmp;
+  const fs::path file = tmp.write("study.yaml",
+                                  "name: point-stops\n"
+                                  "kind: point\n"
+                                  "scene: " + std::string(ECM_SOURCE_DIR) + "/data/point/uniaxial-tension-H10.yaml\n"
+                                  "set: {effective_size: 500.0, snap_back: stop}\n"
+                                  "knobs:\n"
+                                  "  path.increments: [20, 200]\n"
+                                  "reference: {run: {path.increments: 200}}\n");
+  const ToolRun r = study(shellQuoted(file) + " -q --out " + shellQuoted(tmp.path() / "out"), tmp);
+  EXPECT_EQ(r.status, ecm::io::kExitRunFailed) << r.err;
+  expectContains(r.out, "failed");
+  EXPECT_TRUE(fs::exists(tmp.path() / "out" / "study.csv"));
+}
+
+TEST(EcmStudy, AnOutputFolderThatCannotBeUsedIsBadInput) {
+  TempDir tmp;
+  const fs::path file = tmp.write("study.yaml", pointStudy());
+  const fs::path notAFolder = tmp.write("a-file", "not a folder\n");
+  const ToolRun r = study(shellQuoted(file) + " -q --out " + shellQuoted(notAFolder), tmp);
+  EXPECT_EQ(r.status, ecm::io::kExitBadInput);
+  expectContains(r.err, "a-file");
+}
+
+}  // namespace
+}  // namespace ecm::study::test
