@@ -11,13 +11,14 @@
 //   payload: u64 scene file hash | i32 threads |
 //            step state: f64 time, dt | i64 step | f64 external work, dissipated, damping |
 //              i64 sub-stepped updates, snap-back releases | u64 conditions, each f64 reaction x y,
-//              prescribed displacement x y | u64 loads, each f64 applied force x y
-//            particles: u64 n | f64 position 2n, displacement 2n, velocity 2n, mass n, volume n,
+//              prescribed displacement x y | u64 loads, each f64 applied force x y |
+//              u64 d, u32 deferred particles d (USL: the last step's deferred list, index order)
+//            particles: u64 n | f64 position 2n, origin 2n, velocity 2n, mass n, volume n,
 //              strain 3n, stress 3n, strain increment 3n | u8 material n | i32 band n |
 //              u64 m (0 or n), f64 integrity m | u64 bands, each f64 crack normal 2, jump 2,
 //              onset strain 3, integrity, volume fraction | u64 k (0 or n), i32 second band k |
 //              u64 second bands, each as a band
-//            run: f64 next output time, peak load | u64 history.csv bytes, FNV-1a 64, rows |
+//            run: f64 next output time, peak load, stop_when peak | u64 history.csv bytes, FNV-1a 64, rows |
 //              u64 snapshots, f64 their times
 // The per-step caches (grid fields, shape-function stencils) are not stored: every step
 // rebuilds them before use.

@@ -150,10 +150,9 @@ void Solver::scatterState() {
   }
   if (bad != kNoParticle) throwLeftGrid(bad);
   sumTouchedNodes();
-  gridHoldsState_ = true;
 }
 
-void Solver::gatherStressScatter() {
+bool Solver::gatherStressScatter() {
   const TransferSetup tr = setupOf(scene_, invCell_, halfWidth_);
   const FusedFn fn = fusedFor(scene_.solver.shapeFunction);
   const std::size_t count = particles_.size();
@@ -181,14 +180,11 @@ void Solver::gatherStressScatter() {
   }
   deferred_.clear();  // part t precedes part t + 1: the joined list is in index order
   for (const auto& mine : deferredPerThread_) deferred_.insert(deferred_.end(), mine.begin(), mine.end());
-  gridHoldsState_ = false;
   if (notFinite != kNoParticle) throwNotFinite(notFinite);
-  gridPending_ = !leftGrid;
+  return !leftGrid;
 }
 
 void Solver::scatterDeferred() {
-  if (!gridPending_) return;  // a stencil left the grid: the next step's scatterState reports it
-  gridPending_ = false;
   const TransferSetup tr = setupOf(scene_, invCell_, halfWidth_);
   const OrderedFn fn = orderedFor<false>(scene_.solver.shapeFunction);
 #pragma omp parallel for num_threads(threads_) schedule(static, 1)
@@ -200,7 +196,6 @@ void Solver::scatterDeferred() {
     lo = span.lo, hi = span.hi;
   }
   sumTouchedNodes();
-  gridHoldsState_ = true;
 }
 
 void Solver::sumTouchedNodes() {

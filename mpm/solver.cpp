@@ -107,7 +107,7 @@ void Solver::restoreStepState(const StepState& s) {
     throw std::invalid_argument("the deferred particle list is not sorted or names a particle beyond " +
                                 std::to_string(particles_.size()));
   deferred_ = s.deferred;
-  gridHoldsState_ = false;
+  rebuildGridNextStep();
 }
 
 double Solver::damage(std::size_t i) const {

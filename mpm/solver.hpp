@@ -61,7 +61,8 @@ class Solver {
   // the fused pass is tested against.
   void advanceByPhases();
 
-  // --- the phases ---
+  // --- the phases (step.cpp puts them in order); run by hand before advance(), call
+  // rebuildGridNextStep() first ---
   void particleToGrid(unsigned transfer);
   void updateGrid();          // v^n = p/m, forces and damping -> v^{n+1}, conditions, reactions
   void gridVelocities();      // v = p/m with the velocity conditions (USF strain, MUSL remap)
@@ -133,11 +134,14 @@ class Solver {
   long substepped_ = 0;
   long released_ = 0;
 
-  // USL fused (fused_transfer.cpp): the grid holds the scatter of the present particles
-  // (their mass, momentum and forces, loads not yet added), or is waiting for the deferred points.
-  bool gridHoldsState_ = false, gridPending_ = false;
+  // USL fused (fused_transfer.cpp): the grid holds the scatter of the present particles (their
+  // mass, momentum and forces, loads not yet added). Set only by step.cpp (and cleared by
+  // rebuildGridNextStep).
+  bool gridHoldsState_ = false;
   void scatterState();         // rebuild the scatter of the present particles, in the fused order
-  void gatherStressScatter();  // G2P, closed-form stresses and the next step's scatter in one pass
+  // G2P, closed-form stresses and the next step's scatter in one pass; false when a stencil
+  // left the grid (the deferred points then do not scatter; the next scatterState reports it).
+  bool gatherStressScatter();
   void scatterDeferred();      // the deferred points' scatter, after updateStresses; sums the parts
   detail::ScatterTarget part(int t);  // scatter buffer of part t: the grid (0) or scratch_[t - 1]
   void sumScatterBuffers(unsigned what, int parts);

@@ -15,8 +15,9 @@
 // particles without a closed form (cracked, near onset, smeared) are deferred: they take
 // Material::update after the pass and scatter then. The fused pass therefore leaves the next
 // step's P2G done: the grid "holds the state" (gridHoldsState_) and the next step starts at the
-// grid phase. Anything that changes the particles between steps (a restart, editParticles())
-// makes the next step rebuild that scatter first (scatterState).
+// grid phase. Only this file sets that flag; anything that changes the particles between steps
+// (a restart, editParticles(), phases run by hand) calls rebuildGridNextStep(), and the next
+// step rebuilds that scatter first (scatterState).
 //
 // The fused USL gives the plain sequence's results up to the order of the sums: within a part of
 // the particles it adds the closed-form points before the deferred ones (1e-12 relative on the
@@ -28,11 +29,15 @@ namespace ecm::mpm {
 void Solver::advance() {
   if (scene_.solver.scheme == UpdateScheme::USL) {
     if (!gridHoldsState_) scatterState();  // P2G of this step: first step, restart, particles edited
+    gridHoldsState_ = false;               // until the pass below has scattered every point anew
     addLoads();
     updateGrid();
-    gatherStressScatter();  // G2P, strain, closed-form stresses, and the next step's P2G
-    updateStresses(true);   // stress of the deferred points
-    scatterDeferred();      // their share of the next step's P2G
+    const bool inGrid = gatherStressScatter();  // G2P, strain, closed-form stresses, the next step's P2G
+    updateStresses(true);                       // stress of the deferred points
+    if (inGrid) {  // (a stencil that left the grid is reported by the next step's scatterState)
+      scatterDeferred();  // their share of the next step's P2G
+      gridHoldsState_ = true;
+    }
   } else {
     phases();
   }
@@ -47,6 +52,7 @@ void Solver::advanceByPhases() {
 }
 
 void Solver::phases() {
+  gridHoldsState_ = false;  // the plain phases leave no scatter for the next step
   switch (scene_.solver.scheme) {
     case UpdateScheme::USF:  // update stress first: strain from the step's starting velocities
       particleToGrid(kStencils | kMassMomentum);

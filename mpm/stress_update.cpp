@@ -29,7 +29,6 @@ struct Failure {
 }  // namespace
 
 void Solver::updateStresses(bool deferredOnly) {
-  if (!deferredOnly) gridHoldsState_ = false;  // every stress may change (the deferred ones scatter after)
   Particles& p = particles_;
   // Positions j = 0 .. count - 1 in the list of particles to update (all, or the deferred ones).
   const std::size_t count = deferredOnly ? deferred_.size() : p.size();

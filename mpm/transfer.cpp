@@ -98,7 +98,6 @@ ScatterTarget Solver::part(int t) {
 }
 
 void Solver::particleToGrid(unsigned what) {
-  gridHoldsState_ = false;
   const ScatterFn fn = scatterFor(scene_.solver.shapeFunction, what);
   const int nodes = scene_.grid.nodeCount();
   const std::size_t count = particles_.size();
@@ -125,7 +124,6 @@ void Solver::particleToGrid(unsigned what) {
 }
 
 void Solver::gridToParticle(bool withStrainIncrements) {
-  gridHoldsState_ = false;
   const std::size_t count = particles_.size();
   const GatherFn fn = gatherFor(scene_.solver.shapeFunction, withStrainIncrements);
   std::size_t bad = kNoParticle;
