@@ -55,38 +55,8 @@ Material::Material(const MaterialParams& p)
   if (const auto* s = smeared()) params_.softeningModulus = s->law().law().softeningModulus;
 }
 
-UpdateResult Material::updateOnce(PointState s, const Voigt& d, const EffectiveSize& size, OpenedBands& opened,
-                                  const UpdateOptions& options) const {
-  switch (params_.model) {
-    case ModelKind::LinearElastic: {
-      LinearElastic::State e{s.strain};
-      const UpdateResult r = std::get<LinearElastic>(model_).update(e, d);
-      s.strain = e.strain;
-      return r;
-    }
-    case ModelKind::SmearedCrack: {
-      SmearedCrack::State c{s.strain, *s.integrity};
-      const UpdateResult r = std::get<SmearedCrack>(model_).update(c, d);
-      s.strain = c.strain;
-      *s.integrity = c.integrity;
-      return r;
-    }
-    case ModelKind::Enriched: {
-      const TwoPhasePoint& m = *std::get_if<TwoPhasePoint>(&model_);
-      if (!m.opensSecondBand())
-        return s.band ? m.updateCracked(*s.band, s.strain, d, options)
-                      : m.updateIntact(s.strain, d, size, opened.first, options);
-      return s.band ? m.updateCracked(*s.band, s.secondBand, s.strain, d, size, opened.second, options)
-                    : m.updateIntact(s.strain, d, size, opened.first, opened.second, options);
-    }
-  }
-  return {};
-}
-
-UpdateResult Material::update(PointState s, const Voigt& d, const EffectiveSize& size, OpenedBands& opened,
-                              const UpdateOptions& options) const {
-  UpdateResult r = updateOnce(s, d, size, opened, options);
-  if (r.status != UpdateStatus::NotConverged) return r;
+UpdateResult Material::substepped(PointState s, const Voigt& d, const EffectiveSize& size, OpenedBands& opened,
+                                  const UpdateOptions& options, UpdateResult r) const {
   // 2^level equal sub-steps on a copy of the state, committed only if every one converges.
   for (int level = 1; level <= options.substepLevels; ++level) {
     const int n = 1 << level;

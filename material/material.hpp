@@ -69,8 +69,13 @@ class Material {
   // otherwise it is unchanged. A NotConverged update is retried in 2, 4, ... 2^levels equal
   // sub-steps (options.substepLevels), all of one size committed together or none; a snap-back
   // or a refused size is a property of the path, not of the step, and is not sub-stepped.
+  // (Inline: the MPM calls it for every cracked point of every step; the sub-steps are not.)
   UpdateResult update(PointState state, const Voigt& strainIncrement, const EffectiveSize& size, OpenedBands& opened,
-                      const UpdateOptions& options) const;
+                      const UpdateOptions& options) const {
+    UpdateResult r = updateOnce(state, strainIncrement, size, opened, options);
+    if (r.status != UpdateStatus::NotConverged || options.substepLevels <= 0) return r;
+    return substepped(state, strainIncrement, size, opened, options, r);
+  }
   // The same on a MaterialPoint (its bands stored in place).
   UpdateResult update(MaterialPoint& point, const Voigt& strainIncrement, const EffectiveSize& size,
                       const UpdateOptions& options = {}) const;
@@ -98,8 +103,34 @@ class Material {
   const SmearedCrack* smeared() const { return std::get_if<SmearedCrack>(&model_); }
 
  private:
-  UpdateResult updateOnce(PointState state, const Voigt& strainIncrement, const EffectiveSize& size,
-                          OpenedBands& opened, const UpdateOptions& options) const;
+  // One update of the point's model, without sub-steps.
+  UpdateResult updateOnce(PointState s, const Voigt& d, const EffectiveSize& size, OpenedBands& opened,
+                          const UpdateOptions& options) const {
+    switch (params_.model) {
+      case ModelKind::LinearElastic: {
+        LinearElastic::State e{s.strain};
+        const UpdateResult r = std::get_if<LinearElastic>(&model_)->update(e, d);
+        s.strain = e.strain;
+        return r;
+      }
+      case ModelKind::SmearedCrack: {
+        SmearedCrack::State c{s.strain, *s.integrity};
+        const UpdateResult r = std::get_if<SmearedCrack>(&model_)->update(c, d);
+        s.strain = c.strain;
+        *s.integrity = c.integrity;
+        return r;
+      }
+      case ModelKind::Enriched: break;
+    }
+    const TwoPhasePoint& m = *std::get_if<TwoPhasePoint>(&model_);
+    if (!m.opensSecondBand())
+      return s.band ? m.updateCracked(*s.band, s.strain, d, options) : m.updateIntact(s.strain, d, size, opened.first, options);
+    return s.band ? m.updateCracked(*s.band, s.secondBand, s.strain, d, size, opened.second, options)
+                  : m.updateIntact(s.strain, d, size, opened.first, opened.second, options);
+  }
+  // The retries of an update that did not converge (`first`): 2, 4, ... 2^levels equal sub-steps.
+  UpdateResult substepped(PointState s, const Voigt& d, const EffectiveSize& size, OpenedBands& opened,
+                          const UpdateOptions& options, UpdateResult first) const;
 
   MaterialParams params_;
   Tangent stiffness_;
