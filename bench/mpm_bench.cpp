@@ -129,11 +129,16 @@ void BM_Phase(benchmark::State& state) {
     run();
     if (ph != phase) state.ResumeTiming();
   };
+  const StepSetup& setup = solver.setup();
+  MpmState& st = solver.editState();  // the plain USL phases of mpm/step.cpp, run by hand
   for (auto _ : state) {
-    timed(kP2G, [&] { solver.particleToGrid(kStencils | kMassMomentum | kForces); });
-    timed(kGrid, [&] { solver.updateGrid(); });
-    timed(kG2P, [&] { solver.gridToParticle(true); });
-    timed(kStress, [&] { solver.updateStresses(); });
+    timed(kP2G, [&] {
+      particleToGrid(setup, st.clock.step, st.particles, st.grid, st.scatter, kStencils | kMassMomentum | kForces);
+      addLoads(setup, st.clock.time, st.particles, st.grid, st.loads);
+    });
+    timed(kGrid, [&] { updateGrid(setup, st.clock, st.grid, st.conditions, st.totals); });
+    timed(kG2P, [&] { gridToParticle(setup, st.clock, st.grid, st.particles, true); });
+    timed(kStress, [&] { updateStresses(setup, st.clock.step, st.particles, st.totals); });
     timed(kOutput, [&] { writeVtu(solver, vtu, &scratch); });
   }
   std::filesystem::remove(vtu);

@@ -1,20 +1,20 @@
-// The USL step in one pass over the particles (Solver::advance): each point gathers from the
+// The USL step in one pass over the particles (mpm/step.cpp): each point gathers from the
 // updated grid, moves, takes its closed-form stress (Material::closedFormStress), locates its new stencil
 // and scatters its mass, momentum and force into the next step's grid at once, while its fields
 // are in cache. Separate transfers read every particle twice per step, and the step is bound
 // by memory traffic, not arithmetic.
 //
 // Points whose stress is not closed-form (cracked, near onset, smeared) are deferred: they
-// scatter after updateStresses. The particles are split into threads_ fixed parts, one grid
+// scatter after updateStresses. The particles are split into setup.threads fixed parts, one grid
 // buffer each, summed in part order; within a part the sums take its closed-form points in
 // index order, then its deferred points in index order. scatterState() builds exactly that
-// grid from the particles and the deferred list of the last step (first step, restart,
-// particles changed between steps), so a rebuilt grid is bitwise the fused one.
+// grid from the particles and the last step's deferred list (FusedPass) on the first step, after
+// a restart or when the particles changed between steps, so a rebuilt grid is bitwise the fused one.
 #include <omp.h>
 
 #include <algorithm>
 
-#include "mpm/solver.hpp"
+#include "mpm/phases.hpp"
 #include "mpm/transfer_kernels.hpp"
 
 namespace ecm::mpm {
@@ -129,84 +129,79 @@ OrderedFn orderedFor(ShapeFunction f) {
 
 }  // namespace
 
-void Solver::scatterState() {
-  const TransferSetup tr = setupOf(scene_, invCell_, halfWidth_);
-  const OrderedFn fn = orderedFor<true>(scene_.solver.shapeFunction);
-  const std::size_t count = particles_.size();
-  const int nodes = scene_.grid.nodeCount();
+void scatterState(const StepSetup& setup, long step, Particles& particles, GridFields& grid, ScatterBuffers& scatter,
+                  const FusedPass& fused) {
+  const Scene& scene = setup.scene;
+  const TransferSetup tr = setupOf(scene, setup.invCell, setup.halfWidth);
+  const OrderedFn fn = orderedFor<true>(scene.solver.shapeFunction);
+  const std::size_t count = particles.size();
+  const int nodes = scene.grid.nodeCount(), threads = setup.threads;
+  const std::vector<std::uint32_t>& deferred = fused.deferred;
   std::size_t bad = kNoParticle;
-  spans_.resize(static_cast<std::size_t>(threads_));
-#pragma omp parallel for num_threads(threads_) schedule(static, 1) reduction(min : bad)
-  for (int t = 0; t < threads_; ++t) {
-    const ScatterTarget target = part(t);
+  scatter.spans.resize(static_cast<std::size_t>(threads));
+#pragma omp parallel for num_threads(threads) schedule(static, 1) reduction(min : bad)
+  for (int t = 0; t < threads; ++t) {
+    const ScatterTarget target = detail::targetOfPart(grid, scatter, t);
     detail::zeroTarget(target, nodes, true, true);
-    const auto [b, e] = detail::partRange(count, t, threads_);
-    const std::uint32_t* end = deferred_.data() + deferred_.size();
-    const std::uint32_t* first = std::lower_bound(static_cast<const std::uint32_t*>(deferred_.data()), end, static_cast<std::uint32_t>(b));
+    const auto [b, e] = detail::partRange(count, t, threads);
+    const std::uint32_t* end = deferred.data() + deferred.size();
+    const std::uint32_t* first = std::lower_bound(deferred.data(), end, static_cast<std::uint32_t>(b));
     const std::uint32_t* last = std::lower_bound(first, end, static_cast<std::uint32_t>(e));
     detail::BaseSpan span;
-    bad = std::min(bad, fn(tr, particles_, b, e, first, last, target, span));
-    spans_[static_cast<std::size_t>(t)] = {span.lo, span.hi};
+    bad = std::min(bad, fn(tr, particles, b, e, first, last, target, span));
+    scatter.spans[static_cast<std::size_t>(t)] = {span.lo, span.hi};
   }
-  if (bad != kNoParticle) throwLeftGrid(bad);
-  sumTouchedNodes();
+  if (bad != kNoParticle) detail::throwLeftGrid(scene, step, particles, bad);
+  detail::sumTouchedNodes(setup, grid, scatter);
 }
 
-bool Solver::gatherStressScatter() {
-  const TransferSetup tr = setupOf(scene_, invCell_, halfWidth_);
-  const FusedFn fn = fusedFor(scene_.solver.shapeFunction);
-  const std::size_t count = particles_.size();
-  const int nodes = scene_.grid.nodeCount();
-  deferredPerThread_.resize(static_cast<std::size_t>(threads_));
+bool gatherStressScatter(const StepSetup& setup, const Clock& clock, GridFields& grid, Particles& particles,
+                         ScatterBuffers& scatter, FusedPass& fused) {
+  const Scene& scene = setup.scene;
+  const TransferSetup tr = setupOf(scene, setup.invCell, setup.halfWidth);
+  const FusedFn fn = fusedFor(scene.solver.shapeFunction);
+  const std::size_t count = particles.size();
+  const int nodes = scene.grid.nodeCount(), threads = setup.threads;
+  fused.deferredPerThread.resize(static_cast<std::size_t>(threads));
   std::size_t notFinite = kNoParticle;
   bool leftGrid = false;
-  spans_.resize(static_cast<std::size_t>(threads_));
-#pragma omp parallel for num_threads(threads_) schedule(static, 1) reduction(min : notFinite) reduction(|| : leftGrid)
-  for (int t = 0; t < threads_; ++t) {
-    const ScatterTarget target = part(t);
+  scatter.spans.resize(static_cast<std::size_t>(threads));
+#pragma omp parallel for num_threads(threads) schedule(static, 1) reduction(min : notFinite) reduction(|| : leftGrid)
+  for (int t = 0; t < threads; ++t) {
+    const ScatterTarget target = detail::targetOfPart(grid, scatter, t);
     if (t == 0) {
       detail::zeroTarget(target, nodes, true, true);  // the grid itself: every node
     } else {  // a buffer: only where the last scatter left values
-      const auto [lo, hi] = touched_[static_cast<std::size_t>(t - 1)];
+      const auto [lo, hi] = scatter.touched[static_cast<std::size_t>(t - 1)];
       detail::zeroNodes(target, lo, hi);
     }
-    std::vector<std::uint32_t>& mine = deferredPerThread_[static_cast<std::size_t>(t)];
+    std::vector<std::uint32_t>& mine = fused.deferredPerThread[static_cast<std::size_t>(t)];
     mine.clear();
-    const auto [b, e] = detail::partRange(count, t, threads_);
-    const PartOutcome o = fn(tr, grid_, particles_, b, e, dt_, scene_.solver.flip, materials_.data(), target, mine);
+    const auto [b, e] = detail::partRange(count, t, threads);
+    const PartOutcome o = fn(tr, grid, particles, b, e, clock.dt, scene.solver.flip, setup.materials.data(), target, mine);
     notFinite = std::min(notFinite, o.notFinite);
     leftGrid = leftGrid || o.leftGrid;
-    spans_[static_cast<std::size_t>(t)] = {o.span.lo, o.span.hi};
+    scatter.spans[static_cast<std::size_t>(t)] = {o.span.lo, o.span.hi};
   }
-  deferred_.clear();  // part t precedes part t + 1: the joined list is in index order
-  for (const auto& mine : deferredPerThread_) deferred_.insert(deferred_.end(), mine.begin(), mine.end());
-  if (notFinite != kNoParticle) throwNotFinite(notFinite);
+  fused.deferred.clear();  // part t precedes part t + 1: the joined list is in index order
+  for (const auto& mine : fused.deferredPerThread) fused.deferred.insert(fused.deferred.end(), mine.begin(), mine.end());
+  if (notFinite != kNoParticle) detail::throwNotFinite(clock.step, particles, notFinite);
   return !leftGrid;
 }
 
-void Solver::scatterDeferred() {
-  const TransferSetup tr = setupOf(scene_, invCell_, halfWidth_);
-  const OrderedFn fn = orderedFor<false>(scene_.solver.shapeFunction);
-#pragma omp parallel for num_threads(threads_) schedule(static, 1)
-  for (int t = 0; t < threads_; ++t) {
-    const std::vector<std::uint32_t>& mine = deferredPerThread_[static_cast<std::size_t>(t)];
-    auto& [lo, hi] = spans_[static_cast<std::size_t>(t)];
+void scatterDeferred(const StepSetup& setup, Particles& particles, GridFields& grid, ScatterBuffers& scatter,
+                     const FusedPass& fused) {
+  const TransferSetup tr = setupOf(setup.scene, setup.invCell, setup.halfWidth);
+  const OrderedFn fn = orderedFor<false>(setup.scene.solver.shapeFunction);
+#pragma omp parallel for num_threads(setup.threads) schedule(static, 1)
+  for (int t = 0; t < setup.threads; ++t) {
+    const std::vector<std::uint32_t>& mine = fused.deferredPerThread[static_cast<std::size_t>(t)];
+    auto& [lo, hi] = scatter.spans[static_cast<std::size_t>(t)];
     detail::BaseSpan span{lo, hi};
-    fn(tr, particles_, 0, 0, mine.data(), mine.data() + mine.size(), part(t), span);
+    fn(tr, particles, 0, 0, mine.data(), mine.data() + mine.size(), detail::targetOfPart(grid, scatter, t), span);
     lo = span.lo, hi = span.hi;
   }
-  sumTouchedNodes();
-}
-
-void Solver::sumTouchedNodes() {
-  const int nx = scene_.grid.nodesX(), nodes = scene_.grid.nodeCount();
-  const int reach = (supportSize(scene_.solver.shapeFunction) - 1) * nx + supportSize(scene_.solver.shapeFunction);
-  for (int t = 1; t < threads_; ++t) {
-    const auto [lo, hi] = spans_[static_cast<std::size_t>(t)];
-    const std::pair<int, int> range = lo > hi ? std::pair{0, 0} : std::pair{lo, std::min(nodes, hi + reach)};
-    touched_[static_cast<std::size_t>(t - 1)] = range;
-    addScatterBuffer(t, kMassMomentum | kForces, range.first, range.second);
-  }
+  detail::sumTouchedNodes(setup, grid, scatter);
 }
 
 }  // namespace ecm::mpm

@@ -9,7 +9,8 @@
 #include <optional>
 #include <sstream>
 
-#include "mpm/solver.hpp"
+#include "mpm/errors.hpp"
+#include "mpm/phases.hpp"
 
 namespace ecm::mpm {
 
@@ -28,11 +29,12 @@ struct Failure {
 
 }  // namespace
 
-void Solver::updateStresses(bool deferredOnly) {
-  Particles& p = particles_;
+void updateStresses(const StepSetup& setup, long step, Particles& p, RunTotals& totals,
+                    const std::vector<std::uint32_t>* only) {
+  const bool deferredOnly = only != nullptr;
   // Positions j = 0 .. count - 1 in the list of particles to update (all, or the deferred ones).
-  const std::size_t count = deferredOnly ? deferred_.size() : p.size();
-  const std::uint32_t* list = deferredOnly ? deferred_.data() : nullptr;
+  const std::size_t count = deferredOnly ? only->size() : p.size();
+  const std::uint32_t* list = deferredOnly ? only->data() : nullptr;
   // Dissipation summed per chunk in particle order (a local sum, stored once: a shared
   // per-particle accumulator put two threads on one cache line and cost half the step), then
   // over the chunks in order: the same bits for any thread count and schedule.
@@ -41,11 +43,11 @@ void Solver::updateStresses(bool deferredOnly) {
   const std::size_t chunks = (count + kChunk - 1) / kChunk;
   std::vector<double> chunkDissipation(chunks, 0.0);
   long retries = 0, released = 0;
-  UpdateOptions options{scene_.solver.snapBack, false};  // explicit: no tangent needed
-  options.substepLevels = scene_.solver.substepLevels;
+  UpdateOptions options{setup.scene.solver.snapBack, false};  // explicit: no tangent needed
+  options.substepLevels = setup.scene.solver.substepLevels;
   Failure failure;
-  std::vector<std::vector<Onset>> onsets(static_cast<std::size_t>(threads_));
-#pragma omp parallel num_threads(threads_) reduction(+ : retries, released)
+  std::vector<std::vector<Onset>> onsets(static_cast<std::size_t>(setup.threads));
+#pragma omp parallel num_threads(setup.threads) reduction(+ : retries, released)
   {
     std::vector<Onset>& mine = onsets[static_cast<std::size_t>(omp_get_thread_num())];
     // Dynamic: cracked points cost ~100 intact ones and cluster in space. Each point's update
@@ -56,7 +58,7 @@ void Solver::updateStresses(bool deferredOnly) {
       const std::size_t end = std::min(count, (c + 1) * kChunk);
       for (std::size_t j = c * kChunk; j < end; ++j) {
         const std::size_t i = list ? list[j] : j;
-        const Material& m = materials_[p.material[i]];
+        const Material& m = setup.materials[p.material[i]];
         const Voigt& d = p.strainIncrement[i];
         const std::int32_t bi = p.band[i];
         // (the fused USL pass has tried the closed form on its deferred points already)
@@ -66,7 +68,7 @@ void Solver::updateStresses(bool deferredOnly) {
         const UpdateResult r = m.update({p.strain[i], p.integrity.empty() ? nullptr : &p.integrity[i],
                                          bi >= 0 ? &p.bands[static_cast<std::size_t>(bi)] : nullptr,
                                          b2 >= 0 ? &p.secondBands[static_cast<std::size_t>(b2)] : nullptr},
-                                        d, size_, onset.bands, options);
+                                        d, setup.size, onset.bands, options);
         if (r.converged()) {
           p.stress[i] = r.stress;
           if (r.dissipation != 0.0) chunkSum += r.dissipation * p.volume[i];
@@ -101,23 +103,23 @@ void Solver::updateStresses(bool deferredOnly) {
   }
   // Every 64 steps the bands go back into particle order (decided from the state and the step
   // alone, so a restarted run stores them exactly as an uninterrupted one).
-  if ((step_ + 1) % 64 == 0 && !p.bandsInParticleOrder()) p.sortBandsByParticle();
+  if ((step + 1) % 64 == 0 && !p.bandsInParticleOrder()) p.sortBandsByParticle();
   double dissipated = 0.0;
   for (const double d : chunkDissipation) dissipated += d;
-  dissipated_ += dissipated;
-  substepped_ += retries;
-  released_ += released;
+  totals.dissipated += dissipated;
+  totals.substepped += retries;
+  totals.released += released;
   if (failure.particle != std::numeric_limits<std::size_t>::max()) {
     const std::size_t i = failure.particle;
     std::ostringstream msg;
-    msg << "step " << step_ + 1 << ": particle " << i << " at (" << p.position[i][0] << ", " << p.position[i][1]
+    msg << "step " << step + 1 << ": particle " << i << " at (" << p.position[i][0] << ", " << p.position[i][1]
         << ") mm: ";
     FailureKind kind = FailureKind::MaterialFailure;
     if (failure.result.converged()) {
       kind = FailureKind::NotFinite;
       msg << "non-finite stress";
     } else {
-      msg << materials_[p.material[i]].explain(failure.result);
+      msg << setup.materials[p.material[i]].explain(failure.result);
       // The full state, to reproduce the update outside the run (material/two_phase_point.hpp).
       msg.precision(17);
       const auto v = [&](const auto& x) {
@@ -137,7 +139,7 @@ void Solver::updateStresses(bool deferredOnly) {
         msg << ", second band {normal " << v(b->crackNormal) << ", jump " << v(b->jump) << ", onset_strain "
             << v(b->onsetStrain) << ", integrity " << b->integrity << ", f " << b->volumeFraction << "}";
     }
-    throw SimulationError(kind, step_ + 1, i, p.position[i], msg.str(), failure.result.status, failure.result.residual);
+    throw SimulationError(kind, step + 1, i, p.position[i], msg.str(), failure.result.status, failure.result.residual);
   }
 }
 

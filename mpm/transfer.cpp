@@ -8,7 +8,8 @@
 #include <limits>
 #include <sstream>
 
-#include "mpm/solver.hpp"
+#include "mpm/errors.hpp"
+#include "mpm/phases.hpp"
 #include "mpm/transfer_kernels.hpp"
 
 namespace ecm::mpm {
@@ -91,101 +92,121 @@ GatherFn gatherFor(ShapeFunction f, bool withStrain) {
   return withShapeFunction(f, [withStrain]<ShapeFunction F>() -> GatherFn { return withStrain ? gather<F, true> : gather<F, false>; });
 }
 
-}  // namespace
-
-ScatterTarget Solver::part(int t) {
-  return t == 0 ? detail::targetOf(grid_) : detail::targetOf(scratch_[static_cast<std::size_t>(t - 1)]);
+ScatterTarget part(GridFields& grid, ScatterBuffers& scatter, int t) {
+  return t == 0 ? detail::targetOf(grid) : detail::targetOf(scatter.buffers[static_cast<std::size_t>(t - 1)]);
 }
 
-void Solver::particleToGrid(unsigned what) {
-  const ScatterFn fn = scatterFor(scene_.solver.shapeFunction, what);
-  const int nodes = scene_.grid.nodeCount();
-  const std::size_t count = particles_.size();
+// Buffer t added into the grid over nodes [lo, hi). Buffer by buffer, node by node: every node
+// sums the buffers in part order.
+void addScatterBuffer(int threads, const GridAccumulator& a, GridFields& grid, unsigned what, int lo, int hi) {
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (int node = lo; node < hi; ++node) {
+    const auto k = static_cast<std::size_t>(node);
+    if (what & kMassMomentum) {
+      grid.mass[k] += a.mass[k];
+      grid.momentum[k] += a.momentum[k];
+    }
+    if (what & kForces) {
+      grid.force[k] += a.force[k];
+      grid.externalForce[k] += a.externalForce[k];
+    }
+  }
+}
+
+}  // namespace
+
+namespace detail {
+
+ScatterTarget targetOfPart(GridFields& grid, ScatterBuffers& scatter, int t) { return part(grid, scatter, t); }
+
+void sumTouchedNodes(const StepSetup& setup, GridFields& grid, ScatterBuffers& scatter) {
+  const Grid& g = setup.scene.grid;
+  const int nx = g.nodesX(), nodes = g.nodeCount();
+  const int s = supportSize(setup.scene.solver.shapeFunction);
+  const int reach = (s - 1) * nx + s;
+  for (int t = 1; t < setup.threads; ++t) {
+    const auto [lo, hi] = scatter.spans[static_cast<std::size_t>(t)];
+    const std::pair<int, int> range = lo > hi ? std::pair{0, 0} : std::pair{lo, std::min(nodes, hi + reach)};
+    scatter.touched[static_cast<std::size_t>(t - 1)] = range;
+    addScatterBuffer(setup.threads, scatter.buffers[static_cast<std::size_t>(t - 1)], grid, kMassMomentum | kForces,
+                     range.first, range.second);
+  }
+}
+
+void throwNotFinite(long step, const Particles& particles, std::size_t p) {
+  std::ostringstream msg;
+  msg << "step " << step + 1 << ": particle " << p << " has a non-finite velocity or position (velocity ("
+      << particles.velocity[p][0] << ", " << particles.velocity[p][1] << ") mm/s)";
+  throw SimulationError(FailureKind::NotFinite, step + 1, p, particles.position[p], msg.str());
+}
+
+void throwLeftGrid(const Scene& scene, long step, const Particles& particles, std::size_t p) {
+  const Vec2& x = particles.position[p];
+  std::ostringstream msg;
+  const Vec2 hi = scene.grid.origin + scene.grid.extent();
+  msg << "step " << step << ": particle " << p << " at (" << x[0] << ", " << x[1] << ") mm left the grid ["
+      << scene.grid.origin[0] << ", " << hi[0] << "] x [" << scene.grid.origin[1] << ", " << hi[1] << "] mm";
+  if (scene.solver.shapeFunction != ShapeFunction::Linear) msg << " (or its " << toString(scene.solver.shapeFunction) << " support did)";
+  throw SimulationError(FailureKind::LeftGrid, step, p, x, msg.str());
+}
+
+}  // namespace detail
+
+void particleToGrid(const StepSetup& setup, long step, Particles& particles, GridFields& grid, ScatterBuffers& scatter,
+                    unsigned what) {
+  const Scene& scene = setup.scene;
+  const ScatterFn fn = scatterFor(scene.solver.shapeFunction, what);
+  const int nodes = scene.grid.nodeCount();
+  const std::size_t count = particles.size();
   std::size_t bad = kNoParticle;
   int used = 1;
-#pragma omp parallel num_threads(threads_)
+#pragma omp parallel num_threads(setup.threads)
   {
     const int t = omp_get_thread_num(), n = omp_get_num_threads();
 #pragma omp single
     used = n;
-    const ScatterTarget target = part(t);
+    const ScatterTarget target = part(grid, scatter, t);
     detail::zeroTarget(target, nodes, what & kMassMomentum, what & kForces);
     const auto [b, e] = detail::partRange(count, t, n);
-    const std::size_t mine = fn(scene_.grid, invCell_, halfWidth_, particles_, b, e, scene_.solver.gravity, target);
+    const std::size_t mine = fn(scene.grid, setup.invCell, setup.halfWidth, particles, b, e, scene.solver.gravity, target);
     if (mine != kNoParticle) {
 #pragma omp critical(ecm_mpm_failure)
       bad = std::min(bad, mine);
     }
   }
-  if (bad != kNoParticle) throwLeftGrid(bad);
-  sumScatterBuffers(what, used);
-  touched_.assign(scratch_.size(), {0, nodes});  // the buffers hold values anywhere
-  if (what & kForces) addLoads();
+  if (bad != kNoParticle) detail::throwLeftGrid(scene, step, particles, bad);
+  for (int t = 1; t < used; ++t)
+    addScatterBuffer(setup.threads, scatter.buffers[static_cast<std::size_t>(t - 1)], grid, what, 0, nodes);
+  scatter.touched.assign(scatter.buffers.size(), {0, nodes});  // the buffers hold values anywhere
 }
 
-void Solver::gridToParticle(bool withStrainIncrements) {
-  const std::size_t count = particles_.size();
-  const GatherFn fn = gatherFor(scene_.solver.shapeFunction, withStrainIncrements);
+void gridToParticle(const StepSetup& setup, const Clock& clock, const GridFields& grid, Particles& particles,
+                    bool withStrainIncrements) {
+  const Scene& scene = setup.scene;
+  const std::size_t count = particles.size();
+  const GatherFn fn = gatherFor(scene.solver.shapeFunction, withStrainIncrements);
   std::size_t bad = kNoParticle;
-#pragma omp parallel num_threads(threads_)
+#pragma omp parallel num_threads(setup.threads)
   {
     const auto [b, e] = detail::partRange(count, omp_get_thread_num(), omp_get_num_threads());
-    const std::size_t first = fn(scene_.grid, invCell_, halfWidth_, grid_, particles_, b, e, dt_, scene_.solver.flip);
+    const std::size_t first = fn(scene.grid, setup.invCell, setup.halfWidth, grid, particles, b, e, clock.dt, scene.solver.flip);
     if (first != kNoParticle) {
 #pragma omp critical(ecm_mpm_failure)
       bad = std::min(bad, first);
     }
   }
-  if (bad != kNoParticle) throwNotFinite(bad);
+  if (bad != kNoParticle) detail::throwNotFinite(clock.step, particles, bad);
 }
 
-void Solver::sumScatterBuffers(unsigned what, int parts) {
-  for (int t = 1; t < parts; ++t) addScatterBuffer(t, what, 0, scene_.grid.nodeCount());
-}
-
-// Buffer t added into the grid over nodes [lo, hi). Buffer by buffer, node by node: every node
-// sums the buffers in part order.
-void Solver::addScatterBuffer(int t, unsigned what, int lo, int hi) {
-  const GridAccumulator& a = scratch_[static_cast<std::size_t>(t - 1)];
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (int node = lo; node < hi; ++node) {
-    const auto k = static_cast<std::size_t>(node);
-    if (what & kMassMomentum) {
-      grid_.mass[k] += a.mass[k];
-      grid_.momentum[k] += a.momentum[k];
-    }
-    if (what & kForces) {
-      grid_.force[k] += a.force[k];
-      grid_.externalForce[k] += a.externalForce[k];
-    }
-  }
-}
-
-void Solver::computeStrainIncrements() {
-  const std::size_t count = particles_.size();
-  const StrainFn fn = withShapeFunction(scene_.solver.shapeFunction, []<ShapeFunction F>() -> StrainFn { return strainIncrements<F>; });
-#pragma omp parallel num_threads(threads_)
+void computeStrainIncrements(const StepSetup& setup, double dt, const GridFields& grid, Particles& particles) {
+  const Scene& scene = setup.scene;
+  const std::size_t count = particles.size();
+  const StrainFn fn = withShapeFunction(scene.solver.shapeFunction, []<ShapeFunction F>() -> StrainFn { return strainIncrements<F>; });
+#pragma omp parallel num_threads(setup.threads)
   {
     const auto [b, e] = detail::partRange(count, omp_get_thread_num(), omp_get_num_threads());
-    fn(scene_.grid, invCell_, halfWidth_, grid_, particles_, b, e, dt_);
+    fn(scene.grid, setup.invCell, setup.halfWidth, grid, particles, b, e, dt);
   }
-}
-
-void Solver::throwNotFinite(std::size_t p) const {
-  std::ostringstream msg;
-  msg << "step " << step_ + 1 << ": particle " << p << " has a non-finite velocity or position (velocity ("
-      << particles_.velocity[p][0] << ", " << particles_.velocity[p][1] << ") mm/s)";
-  throw SimulationError(FailureKind::NotFinite, step_ + 1, p, particles_.position[p], msg.str());
-}
-
-void Solver::throwLeftGrid(std::size_t p) const {
-  const Vec2& x = particles_.position[p];
-  std::ostringstream msg;
-  const Vec2 hi = scene_.grid.origin + scene_.grid.extent();
-  msg << "step " << step_ << ": particle " << p << " at (" << x[0] << ", " << x[1] << ") mm left the grid ["
-      << scene_.grid.origin[0] << ", " << hi[0] << "] x [" << scene_.grid.origin[1] << ", " << hi[1] << "] mm";
-  if (scene_.solver.shapeFunction != ShapeFunction::Linear) msg << " (or its " << toString(scene_.solver.shapeFunction) << " support did)";
-  throw SimulationError(FailureKind::LeftGrid, step_, p, x, msg.str());
 }
 
 }  // namespace ecm::mpm

@@ -10,6 +10,7 @@
 #include "mpm/grid.hpp"
 #include "mpm/particles.hpp"
 #include "mpm/shape_function.hpp"
+#include "mpm/state.hpp"
 
 namespace ecm::mpm::detail {
 
@@ -63,6 +64,15 @@ struct BaseSpan {
     hi = std::max(hi, o.hi);
   }
 };
+
+// Thread t's scatter target: the grid (t = 0) or buffer t - 1 (transfer.cpp).
+ScatterTarget targetOfPart(GridFields& grid, ScatterBuffers& scatter, int t);
+// Adds each thread's buffer into the grid over the nodes its last scatter touched (its span
+// widened by the stencil's reach), which are also the only nodes the next step has to zero.
+void sumTouchedNodes(const StepSetup& setup, GridFields& grid, ScatterBuffers& scatter);
+// The failures of the transfers, as SimulationError (step: the steps taken).
+[[noreturn]] void throwNotFinite(long step, const Particles& particles, std::size_t p);
+[[noreturn]] void throwLeftGrid(const Scene& scene, long step, const Particles& particles, std::size_t p);
 
 inline constexpr std::size_t kNoParticle = std::numeric_limits<std::size_t>::max();
 

@@ -93,7 +93,8 @@ TEST(ParticleToGrid, ConservesMassAndMomentumAndInternalForcesSumToZero) {
     s.loads.clear();
     s.solver.shapeFunction = f;
     Solver solver(s, 1);
-    auto& p = solver.editParticles();
+    MpmState& st = solver.editState();
+    Particles& p = st.particles;
     double mass = 0.0;
     Vec2 momentum = Vec2::Zero();
     for (std::size_t i = 0; i < p.size(); ++i) {
@@ -102,8 +103,8 @@ TEST(ParticleToGrid, ConservesMassAndMomentumAndInternalForcesSumToZero) {
       mass += p.mass[i];
       momentum += p.mass[i] * p.velocity[i];
     }
-    solver.particleToGrid(kStencils | kMassMomentum | kForces);
-    const auto& g = solver.grid();
+    particleToGrid(solver.setup(), 0, p, st.grid, st.scatter, kStencils | kMassMomentum | kForces);
+    const auto& g = st.grid;
     double gm = 0.0;
     Vec2 gp = Vec2::Zero(), gf = Vec2::Zero();
     for (std::size_t n = 0; n < g.mass.size(); ++n) gm += g.mass[n], gp += g.momentum[n], gf += g.force[n];
