@@ -133,7 +133,7 @@ void BM_Phase(benchmark::State& state) {
   MpmState& st = solver.editState();  // the plain USL phases of mpm/step.cpp, run by hand
   for (auto _ : state) {
     timed(kP2G, [&] {
-      particleToGrid(setup, st.clock.step, st.particles, st.grid, st.scatter, kStencils | kMassMomentum | kForces);
+      particleToGrid(setup, st.clock.step, st.particles, st.grid, st.order, kStencils | kMassMomentum | kForces);
       addLoads(setup, st.clock.time, st.particles, st.grid, st.loads);
     });
     timed(kGrid, [&] { updateGrid(setup, st.clock, st.grid, st.conditions, st.totals); });

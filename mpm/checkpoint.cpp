@@ -158,6 +158,14 @@ void writeCheckpoint(const std::filesystem::path& path, const Solver& solver, co
   e.count(p.secondBand.size());
   e.array(p.secondBand);
   putBands(p.secondBands);
+  const ScatterOrder& order = solver.state().order;  // the scatter's plan and measured rows
+  e.count(order.chunks());
+  for (std::size_t c = 0; c < order.chunks(); ++c) {
+    e.put(static_cast<std::int32_t>(order.measured[c].lo));
+    e.put(static_cast<std::int32_t>(order.measured[c].hi));
+    e.put(static_cast<std::int32_t>(order.planned[c].lo));
+    e.put(static_cast<std::int32_t>(order.planned[c].hi));
+  }
 
   e.put(run.nextOutput);
   e.put(run.peakLoad);
@@ -285,6 +293,8 @@ RunBookkeeping readCheckpoint(const std::filesystem::path& path, Solver& solver,
            std::to_string(p.secondBand.size()) + " (second_band differs)");
   d.array(p.secondBand, secondIndex);
   const std::size_t secondBands = getBands(p.secondBands);
+  std::vector<std::int32_t> rows;
+  d.array(rows, 4 * d.count(4 * sizeof(std::int32_t)));
   for (std::size_t i = 0; i < n; ++i) {
     if (p.material[i] >= solver.materials().size())
       refuse("particle " + std::to_string(i) + " has material " + std::to_string(p.material[i]) + " of " +
@@ -297,6 +307,15 @@ RunBookkeeping readCheckpoint(const std::filesystem::path& path, Solver& solver,
       refuse("particle " + std::to_string(i) + " refers to second band " + std::to_string(p.secondBand[i]) + " of " +
              std::to_string(secondBands));
   }
+  ScatterOrder& order = solver.editState().order;
+  if (rows.size() != 4 * order.chunks())
+    refuse("it has " + std::to_string(rows.size() / 4) + " chunks in its scatter order, the scene " +
+           std::to_string(order.chunks()));
+  for (std::size_t c = 0; c < order.chunks(); ++c) {
+    order.measured[c] = {rows[4 * c], rows[4 * c + 1]};
+    order.planned[c] = {rows[4 * c + 2], rows[4 * c + 3]};
+  }
+  groupChunks(order);
 
   run.nextOutput = d.get<double>();
   run.peakLoad = d.get<double>();

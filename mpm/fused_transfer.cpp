@@ -1,15 +1,18 @@
 // The USL step in one pass over the particles (mpm/step.cpp): each point gathers from the
-// updated grid, moves, takes its closed-form stress (Material::closedFormStress), locates its new stencil
-// and scatters its mass, momentum and force into the next step's grid at once, while its fields
-// are in cache. Separate transfers read every particle twice per step, and the step is bound
-// by memory traffic, not arithmetic.
+// updated grid, moves, takes its closed-form stress (Material::closedFormStress), locates its new
+// stencil and scatters its mass, momentum and force into the next step's grid at once, while its
+// fields are in cache. Separate transfers read every particle twice per step, and the step is
+// bound by memory traffic, not arithmetic.
 //
-// Points whose stress is not closed-form (cracked, near onset, smeared) are deferred: they
-// scatter after updateStresses. The particles are split into setup.threads fixed parts, one grid
-// buffer each, summed in part order; within a part the sums take its closed-form points in
-// index order, then its deferred points in index order. scatterState() builds exactly that
-// grid from the particles and the last step's deferred list (FusedPass) on the first step, after
-// a restart or when the particles changed between steps, so a rebuilt grid is bitwise the fused one.
+// The pass runs chunk by chunk in the scatter order of mpm/scatter_order.hpp, planned at its
+// start. Points whose stress is not closed-form (cracked, near onset, smeared) are deferred:
+// they take Material::update after the pass and then scatter, chunk by chunk in the same colours
+// and groups; a point whose new stencil is outside its chunk's plan (far) scatters last, alone.
+// So every node sums, in this fixed order: the closed-form points (colour, chunk, index), the
+// deferred points (colour, chunk, index), the far points (index), on any number of threads.
+// scatterState() rebuilds exactly that grid from the particles, the plan and the deferred list
+// (first step, restart, particles changed between steps), so a rebuilt grid is bitwise the
+// fused one.
 #include <omp.h>
 
 #include <algorithm>
@@ -24,30 +27,33 @@ namespace {
 using detail::kNoParticle;
 using detail::ScatterTarget;
 
-struct PartOutcome {
+struct ChunkOutcome {
   std::size_t notFinite = kNoParticle;  // first particle with a non-finite velocity or position
   bool leftGrid = false;                // a particle's stencil left the grid
-  detail::BaseSpan span;                // of the new stencils
 };
 
 struct TransferSetup {
   const Grid& grid;
   Vec2 invCell, halfWidth, gravity;
   bool withGravity;
+  const ScatterOrder& order;
 };
 
-TransferSetup setupOf(const Scene& scene, const Vec2& invCell, const Vec2& halfWidth) {
-  return {scene.grid, invCell, halfWidth, scene.solver.gravity, scene.solver.gravity.squaredNorm() > 0.0};
+TransferSetup setupOf(const StepSetup& s, const ScatterOrder& order) {
+  return {s.scene.grid, s.invCell, s.halfWidth, s.scene.solver.gravity, s.scene.solver.gravity.squaredNorm() > 0.0, order};
 }
 
 template <ShapeFunction F>
-PartOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid, Particles& p, std::size_t begin,
-                                std::size_t end, double dt, double flip, const Material* materials,
-                                ScatterTarget out, std::vector<std::uint32_t>& deferred) {
+ChunkOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid, Particles& p, std::size_t c, double dt,
+                                 double flip, const Material* materials, ScatterTarget out, RowSpan& measured,
+                                 std::vector<std::uint32_t>& deferred, std::vector<std::uint32_t>& far) {
   const int nx = t.grid.nodesX();
   const double pic = 1.0 - flip;
-  PartOutcome r;
-  for (std::size_t i = begin; i < end; ++i) {
+  const auto [first, last] = t.order.range(c, p.size());
+  const auto [lo, hi] = t.order.plannedBases(c);
+  ChunkOutcome r;
+  BaseSpan span;
+  for (std::size_t i = first; i < last; ++i) {
     Stencil s;
     expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
     const detail::Gathered at = detail::gatherParticle<F, true>(s, nx, grid);
@@ -73,135 +79,164 @@ PartOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid, 
       continue;
     }
     p.stencilAt[i] = next;
-    r.span.add(next.base);
+    span.add(next.base);
+    if (next.base < lo || next.base >= hi) {  // far: scatters after the colours (scatterDeferred)
+      far.push_back(static_cast<std::uint32_t>(i));
+      if (closedForm) p.stress[i] = sig;
+      continue;
+    }
     if (!closedForm) continue;
     expandStencil<F>(next, t.invCell, t.halfWidth, s);
     detail::scatterParticle<F, true, true>(s, nx, p.mass[i], vp, p.volume[i], sig, t.gravity, t.withGravity, out);
     p.stress[i] = sig;  // stored after its use: a reload right after the store stalls
   }
+  measured = span.rows(nx);
   return r;
 }
 
-// Scatters the particles of [begin, end) that are not in `listed` (sorted), then those listed;
-// Locate: find their stencils first (a rebuild), else use the stored ones. Returns the first
-// particle whose stencil left the grid.
+// Scatters the listed particles of chunk c (or of no chunk: c = npos) that are within its plan,
+// from their stored stencils; Locate: locate them first (a rebuild). Returns the first particle
+// whose stencil left the grid.
 template <ShapeFunction F, bool Locate>
-std::size_t scatterInOrder(const TransferSetup& t, Particles& p, std::size_t begin, std::size_t end,
-                           const std::uint32_t* listed, const std::uint32_t* listedEnd, ScatterTarget out,
-                           detail::BaseSpan& span) {
+std::size_t scatterList(const TransferSetup& t, Particles& p, std::size_t c, const std::uint32_t* begin,
+                        const std::uint32_t* end, ScatterTarget out) {
   const int nx = t.grid.nodesX();
-  const auto one = [&](std::size_t i) {
+  const auto [lo, hi] = c == kNoParticle ? std::pair<std::int64_t, std::int64_t>{INT64_MIN, INT64_MAX} : t.order.plannedBases(c);
+  std::size_t bad = kNoParticle;
+  for (const std::uint32_t* l = begin; l != end; ++l) {
+    const std::uint32_t i = *l;
     if constexpr (Locate)
-      if (!locateStencil<F>(t.grid, t.invCell, t.halfWidth, p.position[i], p.stencilAt[i])) return false;
+      if (!locateStencil<F>(t.grid, t.invCell, t.halfWidth, p.position[i], p.stencilAt[i])) {
+        bad = std::min<std::size_t>(bad, i);
+        continue;
+      }
+    if (p.stencilAt[i].base < lo || p.stencilAt[i].base >= hi) continue;  // far
     Stencil s;
     expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
     detail::scatterParticle<F, true, true>(s, nx, p, i, t.gravity, t.withGravity, out);
-    span.add(s.base);
-    return true;
-  };
-  std::size_t bad = kNoParticle;
-  const std::uint32_t* next = listed;
-  for (std::size_t i = begin; i < end; ++i) {
-    if (next != listedEnd && *next == i) {
-      ++next;
-      continue;
-    }
-    if (!one(i)) bad = std::min(bad, i);
   }
-  for (const std::uint32_t* l = listed; l != listedEnd; ++l)
-    if (!one(*l)) bad = std::min<std::size_t>(bad, *l);
   return bad;
 }
 
-using FusedFn = PartOutcome (*)(const TransferSetup&, const GridFields&, Particles&, std::size_t, std::size_t, double,
-                                double, const Material*, ScatterTarget, std::vector<std::uint32_t>&);
-using OrderedFn = std::size_t (*)(const TransferSetup&, Particles&, std::size_t, std::size_t, const std::uint32_t*,
-                                  const std::uint32_t*, ScatterTarget, detail::BaseSpan&);
-
-FusedFn fusedFor(ShapeFunction f) {
-  return withShapeFunction(f, []<ShapeFunction F>() -> FusedFn { return gatherStressScatter<F>; });
-}
-
-template <bool Locate>
-OrderedFn orderedFor(ShapeFunction f) {
-  return withShapeFunction(f, []<ShapeFunction F>() -> OrderedFn { return scatterInOrder<F, Locate>; });
+// A rebuild's chunk: its particles that are `deferred` (or not), located at their positions;
+// those within the chunk's plan scatter, the far ones go to `far`.
+template <ShapeFunction F>
+std::size_t rebuildChunk(const TransferSetup& t, Particles& p, std::size_t c, const std::vector<std::uint8_t>& isDeferred,
+                         bool deferred, ScatterTarget out, std::vector<std::uint32_t>& far) {
+  const int nx = t.grid.nodesX();
+  const auto [first, last] = t.order.range(c, p.size());
+  const auto [lo, hi] = t.order.plannedBases(c);
+  std::size_t bad = kNoParticle;
+  for (std::size_t i = first; i < last; ++i) {
+    if ((isDeferred[i] != 0) != deferred) continue;
+    StencilAt& at = p.stencilAt[i];
+    if (!locateStencil<F>(t.grid, t.invCell, t.halfWidth, p.position[i], at)) {
+      bad = std::min(bad, i);
+      continue;
+    }
+    if (at.base < lo || at.base >= hi) {
+      far.push_back(static_cast<std::uint32_t>(i));
+      continue;
+    }
+    Stencil s;
+    expandStencil<F>(at, t.invCell, t.halfWidth, s);
+    detail::scatterParticle<F, true, true>(s, nx, p, i, t.gravity, t.withGravity, out);
+  }
+  return bad;
 }
 
 }  // namespace
 
-void scatterState(const StepSetup& setup, long step, Particles& particles, GridFields& grid, ScatterBuffers& scatter,
+void scatterState(const StepSetup& setup, long step, Particles& particles, GridFields& grid, ScatterOrder& order,
                   const FusedPass& fused) {
   const Scene& scene = setup.scene;
-  const TransferSetup tr = setupOf(scene, setup.invCell, setup.halfWidth);
-  const OrderedFn fn = orderedFor<true>(scene.solver.shapeFunction);
-  const std::size_t count = particles.size();
-  const int nodes = scene.grid.nodeCount(), threads = setup.threads;
-  const std::vector<std::uint32_t>& deferred = fused.deferred;
-  std::size_t bad = kNoParticle;
-  scatter.spans.resize(static_cast<std::size_t>(threads));
-#pragma omp parallel for num_threads(threads) schedule(static, 1) reduction(min : bad)
-  for (int t = 0; t < threads; ++t) {
-    const ScatterTarget target = detail::targetOfPart(grid, scatter, t);
-    detail::zeroTarget(target, nodes, true, true);
-    const auto [b, e] = detail::partRange(count, t, threads);
-    const std::uint32_t* end = deferred.data() + deferred.size();
-    const std::uint32_t* first = std::lower_bound(deferred.data(), end, static_cast<std::uint32_t>(b));
-    const std::uint32_t* last = std::lower_bound(first, end, static_cast<std::uint32_t>(e));
-    detail::BaseSpan span;
-    bad = std::min(bad, fn(tr, particles, b, e, first, last, target, span));
-    scatter.spans[static_cast<std::size_t>(t)] = {span.lo, span.hi};
-  }
-  if (bad != kNoParticle) detail::throwLeftGrid(scene, step, particles, bad);
-  detail::sumTouchedNodes(setup, grid, scatter);
+  const int threads = setup.threads;
+  std::vector<std::uint8_t> isDeferred(particles.size(), 0);
+  for (const std::uint32_t i : fused.deferred) isDeferred[i] = 1;
+  detail::zeroScatterFields(threads, grid, true, true);
+  const TransferSetup tr = setupOf(setup, order);
+  const ScatterTarget target = detail::targetOf(grid);
+  std::vector<std::vector<std::uint32_t>> far(static_cast<std::size_t>(threads));
+  std::vector<std::size_t> bad(static_cast<std::size_t>(threads), kNoParticle);
+  order.far.clear();
+  withShapeFunction(scene.solver.shapeFunction, [&]<ShapeFunction F>() {
+    for (const bool deferred : {false, true})  // the pass's order: closed-form points, then the deferred ones
+      forEachChunkByColour(order, threads, [&](std::size_t c, int th) {
+        const auto k = static_cast<std::size_t>(th);
+        bad[k] = std::min(bad[k], rebuildChunk<F>(tr, particles, c, isDeferred, deferred, target, far[k]));
+      });
+    detail::mergeSorted(far, order.far);  // then the far points, deferred or not, in index order
+    scatterList<F, false>(tr, particles, kNoParticle, order.far.data(), order.far.data() + order.far.size(), target);
+  });
+  const std::size_t first = *std::min_element(bad.begin(), bad.end());
+  if (first != kNoParticle) detail::throwLeftGrid(scene, step, particles, first);
 }
 
 bool gatherStressScatter(const StepSetup& setup, const Clock& clock, GridFields& grid, Particles& particles,
-                         ScatterBuffers& scatter, FusedPass& fused) {
+                         ScatterOrder& order, FusedPass& fused) {
   const Scene& scene = setup.scene;
-  const TransferSetup tr = setupOf(scene, setup.invCell, setup.halfWidth);
-  const FusedFn fn = fusedFor(scene.solver.shapeFunction);
-  const std::size_t count = particles.size();
-  const int nodes = scene.grid.nodeCount(), threads = setup.threads;
-  fused.deferredPerThread.resize(static_cast<std::size_t>(threads));
+  const int threads = setup.threads;
+  const auto parts = static_cast<std::size_t>(threads);
+  planScatter(order, scene.grid.nodesY());  // from where the stencils started in the last step
+  detail::zeroScatterFields(threads, grid, true, true);
+  const TransferSetup tr = setupOf(setup, order);
+  const ScatterTarget target = detail::targetOf(grid);
+  fused.deferredPerThread.resize(parts);
+  fused.farPerThread.resize(parts);
+  for (auto& d : fused.deferredPerThread) d.clear();
+  // Per chunk: the thread that ran it and its deferred points' range in that thread's list.
+  struct Segment {
+    int thread = 0;
+    std::uint32_t begin = 0, end = 0;
+  };
+  std::vector<Segment> segments(order.chunks());
+  std::vector<ChunkOutcome> outcome(parts);
+  withShapeFunction(scene.solver.shapeFunction, [&]<ShapeFunction F>() {
+    forEachChunkByColour(order, threads, [&](std::size_t c, int th) {
+      const auto k = static_cast<std::size_t>(th);
+      std::vector<std::uint32_t>& mine = fused.deferredPerThread[k];
+      const auto begin = static_cast<std::uint32_t>(mine.size());
+      const ChunkOutcome o = gatherStressScatter<F>(tr, grid, particles, c, clock.dt, scene.solver.flip,
+                                                    setup.materials.data(), target, order.measured[c], mine,
+                                                    fused.farPerThread[k]);
+      segments[c] = {th, begin, static_cast<std::uint32_t>(mine.size())};
+      outcome[k].notFinite = std::min(outcome[k].notFinite, o.notFinite);
+      outcome[k].leftGrid = outcome[k].leftGrid || o.leftGrid;
+    });
+  });
+  // The deferred points chunk after chunk: in index order.
+  fused.deferred.clear();
+  fused.chunkDeferred.resize(order.chunks());
+  for (std::size_t c = 0; c < order.chunks(); ++c) {
+    const Segment& s = segments[c];
+    const std::vector<std::uint32_t>& list = fused.deferredPerThread[static_cast<std::size_t>(s.thread)];
+    const auto start = static_cast<std::uint32_t>(fused.deferred.size());
+    fused.deferred.insert(fused.deferred.end(), list.begin() + s.begin, list.begin() + s.end);
+    fused.chunkDeferred[c] = {start, static_cast<std::uint32_t>(fused.deferred.size())};
+  }
+  order.far.clear();
+  detail::mergeSorted(fused.farPerThread, order.far);
   std::size_t notFinite = kNoParticle;
   bool leftGrid = false;
-  scatter.spans.resize(static_cast<std::size_t>(threads));
-#pragma omp parallel for num_threads(threads) schedule(static, 1) reduction(min : notFinite) reduction(|| : leftGrid)
-  for (int t = 0; t < threads; ++t) {
-    const ScatterTarget target = detail::targetOfPart(grid, scatter, t);
-    if (t == 0) {
-      detail::zeroTarget(target, nodes, true, true);  // the grid itself: every node
-    } else {  // a buffer: only where the last scatter left values
-      const auto [lo, hi] = scatter.touched[static_cast<std::size_t>(t - 1)];
-      detail::zeroNodes(target, lo, hi);
-    }
-    std::vector<std::uint32_t>& mine = fused.deferredPerThread[static_cast<std::size_t>(t)];
-    mine.clear();
-    const auto [b, e] = detail::partRange(count, t, threads);
-    const PartOutcome o = fn(tr, grid, particles, b, e, clock.dt, scene.solver.flip, setup.materials.data(), target, mine);
+  for (const ChunkOutcome& o : outcome) {
     notFinite = std::min(notFinite, o.notFinite);
     leftGrid = leftGrid || o.leftGrid;
-    scatter.spans[static_cast<std::size_t>(t)] = {o.span.lo, o.span.hi};
   }
-  fused.deferred.clear();  // part t precedes part t + 1: the joined list is in index order
-  for (const auto& mine : fused.deferredPerThread) fused.deferred.insert(fused.deferred.end(), mine.begin(), mine.end());
   if (notFinite != kNoParticle) detail::throwNotFinite(clock.step, particles, notFinite);
   return !leftGrid;
 }
 
-void scatterDeferred(const StepSetup& setup, Particles& particles, GridFields& grid, ScatterBuffers& scatter,
+void scatterDeferred(const StepSetup& setup, Particles& particles, GridFields& grid, const ScatterOrder& order,
                      const FusedPass& fused) {
-  const TransferSetup tr = setupOf(setup.scene, setup.invCell, setup.halfWidth);
-  const OrderedFn fn = orderedFor<false>(setup.scene.solver.shapeFunction);
-#pragma omp parallel for num_threads(setup.threads) schedule(static, 1)
-  for (int t = 0; t < setup.threads; ++t) {
-    const std::vector<std::uint32_t>& mine = fused.deferredPerThread[static_cast<std::size_t>(t)];
-    auto& [lo, hi] = scatter.spans[static_cast<std::size_t>(t)];
-    detail::BaseSpan span{lo, hi};
-    fn(tr, particles, 0, 0, mine.data(), mine.data() + mine.size(), detail::targetOfPart(grid, scatter, t), span);
-    lo = span.lo, hi = span.hi;
-  }
-  detail::sumTouchedNodes(setup, grid, scatter);
+  const TransferSetup tr = setupOf(setup, order);
+  const ScatterTarget target = detail::targetOf(grid);
+  withShapeFunction(setup.scene.solver.shapeFunction, [&]<ShapeFunction F>() {
+    forEachChunkByColour(order, setup.threads, [&](std::size_t c, int) {
+      const auto [begin, end] = fused.chunkDeferred[c];
+      scatterList<F, false>(tr, particles, c, fused.deferred.data() + begin, fused.deferred.data() + end, target);
+    });
+    scatterList<F, false>(tr, particles, kNoParticle, order.far.data(), order.far.data() + order.far.size(), target);
+  });
 }
 
 }  // namespace ecm::mpm

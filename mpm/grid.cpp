@@ -21,12 +21,4 @@ void GridFields::resize(int n) {
   velocityChange.assign(s, Vec2::Zero());
 }
 
-void GridAccumulator::resize(int n) {
-  const auto s = static_cast<std::size_t>(n);
-  mass.assign(s, 0.0);
-  momentum.assign(s, Vec2::Zero());
-  force.assign(s, Vec2::Zero());
-  externalForce.assign(s, Vec2::Zero());
-}
-
 }  // namespace ecm::mpm

@@ -39,13 +39,4 @@ struct GridFields {
   void resize(int n);
 };
 
-// Scatter buffers: what particle-to-grid accumulates (one per thread, summed afterwards).
-struct GridAccumulator {
-  std::vector<double> mass;
-  std::vector<Vec2> momentum;
-  std::vector<Vec2> force;
-  std::vector<Vec2> externalForce;
-  void resize(int n);
-};
-
 }  // namespace ecm::mpm

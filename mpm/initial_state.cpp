@@ -48,9 +48,20 @@ MpmState initialState(const StepSetup& setup, Particles particles) {
   MpmState st;
   st.particles = std::move(particles);
   st.grid.resize(g.nodeCount());
-  st.scatter.buffers.resize(static_cast<std::size_t>(setup.threads - 1));
-  for (auto& b : st.scatter.buffers) b.resize(g.nodeCount());
-  st.scatter.touched.assign(st.scatter.buffers.size(), {0, g.nodeCount()});
+  // The scatter order (mpm/scatter_order.hpp): the rows the stencils start on, then the plan.
+  layOutChunks(g, scene.particlesPerCell, supportSize(scene.solver.shapeFunction), st.particles.size(), st.order);
+  withShapeFunction(scene.solver.shapeFunction, [&]<ShapeFunction F>() {
+    for (std::size_t c = 0; c < st.order.chunks(); ++c) {
+      BaseSpan span;
+      const auto [first, last] = st.order.range(c, st.particles.size());
+      for (std::size_t i = first; i < last; ++i) {
+        StencilAt at;
+        if (locateStencil<F>(g, setup.invCell, setup.halfWidth, st.particles.position[i], at)) span.add(at.base);
+      }
+      st.order.measured[c] = span.rows(g.nodesX());
+    }
+  });
+  planScatter(st.order, g.nodesY());
 
   // dt = cfl * min cell size / the largest P-wave speed sqrt(a_11 / rho) of the materials present.
   std::vector<bool> used(scene.materials.size(), false);

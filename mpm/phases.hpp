@@ -27,14 +27,16 @@ enum Transfer : unsigned {
 // The setup of a scene whose particles are seeded: threads > 0 exactly that many, 0 automatic
 // (the OpenMP default, but at most one thread per `particlesPerThread` particles).
 StepSetup makeStepSetup(Scene scene, std::size_t particles, int threads, std::size_t particlesPerThread);
-// The state at time 0: the particles, the grid and its scatter buffers, the conditions' and
+// The state at time 0: the particles, the grid and its scatter order, the conditions' and
 // loads' members, and dt from the CFL number. Throws std::invalid_argument when a condition or
 // load box holds no node or particle.
 MpmState initialState(const StepSetup& setup, Particles particles);
 
-// P2G: zeroes what `what` scatters and sums it from every particle (step: the steps taken, for
-// the report of a particle outside the grid).
-void particleToGrid(const StepSetup& setup, long step, Particles& particles, GridFields& grid, ScatterBuffers& scatter,
+// P2G: zeroes what `what` scatters and sums it from every particle in the order of
+// mpm/scatter_order.hpp (kStencils: plans the order, locates the stencils, measures their rows
+// and lists the far particles; otherwise the plan of the last kStencils transfer). step: the
+// steps taken, for the report of a particle outside the grid.
+void particleToGrid(const StepSetup& setup, long step, Particles& particles, GridFields& grid, ScatterOrder& order,
                     unsigned what);
 // The loads of the scene at `time`, added to the grid's external forces.
 void addLoads(const StepSetup& setup, double time, const Particles& particles, GridFields& grid,
@@ -51,6 +53,19 @@ void gridToParticle(const StepSetup& setup, const Clock& clock, const GridFields
                     bool withStrainIncrements);
 // The strain increments from the grid velocities.
 void computeStrainIncrements(const StepSetup& setup, double dt, const GridFields& grid, Particles& particles);
+// The strain increments and, in the same pass, the closed-form stresses (elastic and intact
+// points far from onset, Material::closedFormStress); the other points are listed in `deferred`
+// (index order) with their increments, for updateStresses. The same results as
+// computeStrainIncrements then updateStresses, one pass over the particles fewer.
+void strainAndClosedFormStress(const StepSetup& setup, double dt, const GridFields& grid, Particles& particles,
+                               std::vector<std::uint32_t>& deferred,
+                               std::vector<std::vector<std::uint32_t>>& deferredPerThread);
+// MUSL: grid-to-particle (velocities, positions) and the remap of the new particle velocities
+// to the grid's mass and momentum with the step's stencils, in one pass in the scatter order of
+// the step's first particleToGrid: the same results as gridToParticle then
+// particleToGrid(kMassMomentum).
+void gridToParticleAndRemap(const StepSetup& setup, const Clock& clock, GridFields& grid, Particles& particles,
+                            const ScatterOrder& order);
 // The material update (sub-stepping on failure) of every particle, or of `only` (sorted
 // particle indices) when it is given; adds the dissipation and the sub-step and release counts.
 void updateStresses(const StepSetup& setup, long step, Particles& particles, RunTotals& totals,
@@ -58,16 +73,17 @@ void updateStresses(const StepSetup& setup, long step, Particles& particles, Run
 
 // The fused USL pass (fused_transfer.cpp): G2P, strain, closed-form stresses and the next step's
 // P2G in one sweep over the particles.
-// The scatter of the present particles in the fused order (first step, restart, edited particles).
-void scatterState(const StepSetup& setup, long step, Particles& particles, GridFields& grid, ScatterBuffers& scatter,
+// The scatter of the present particles in the order the pass below left it (first step,
+// restart, edited particles): bitwise the grid the pass leaves.
+void scatterState(const StepSetup& setup, long step, Particles& particles, GridFields& grid, ScatterOrder& order,
                   const FusedPass& fused);
-// G2P, strain, closed-form stresses and the next step's scatter; the points without a closed
+// G2P, strain, closed-form stresses and the next step's scatter in a planned `order`; the points without a closed
 // form go to fused.deferred. False when a stencil left the grid (the deferred points then do
 // not scatter; the next scatterState reports it).
 bool gatherStressScatter(const StepSetup& setup, const Clock& clock, GridFields& grid, Particles& particles,
-                         ScatterBuffers& scatter, FusedPass& fused);
-// The deferred points' scatter, after their updateStresses; sums the threads' buffers.
-void scatterDeferred(const StepSetup& setup, Particles& particles, GridFields& grid, ScatterBuffers& scatter,
+                         ScatterOrder& order, FusedPass& fused);
+// The deferred points' scatter after their updateStresses, then the far points' one by one.
+void scatterDeferred(const StepSetup& setup, Particles& particles, GridFields& grid, const ScatterOrder& order,
                      const FusedPass& fused);
 
 }  // namespace ecm::mpm

@@ -151,8 +151,8 @@ std::vector<std::string> historyColumns(const Scene& scene) {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+using WallClock = std::chrono::steady_clock;
+double secondsSince(WallClock::time_point t) { return std::chrono::duration<double>(WallClock::now() - t).count(); }
 
 // One run of a scene: the step loop and its parts, each a member function of its own:
 //   output       a history row at every output step, a VTU snapshot at every snapshot_every-th
@@ -165,7 +165,7 @@ double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(
 class Run {
  public:
   Run(const Scene& scene, const RunOptions& options)
-      : scene_(scene), options_(options), start_(Clock::now()), solver_(scene, options.threads),
+      : scene_(scene), options_(options), start_(WallClock::now()), solver_(scene, options.threads),
         checkpointFile_(checkpointPath(options.outputDir)), lastCheckpoint_(start_) {
     result_.particles = solver_.particles().size();
     if (options.restart) readRestart();  // before anything in the folder is touched
@@ -332,11 +332,6 @@ class Run {
   void readRestart() {
     book_ = readCheckpoint(checkpointFile_, solver_, options_.sceneHash);
     result_.restartedFrom = solver_.step();
-    if (book_.threads != solver_.threads())
-      std::fprintf(stderr,
-                   "warning: %s was written on %d threads, the run goes on on %d: the results agree with an "
-                   "uninterrupted run to round-off, not bitwise\n",
-                   checkpointFile_.string().c_str(), book_.threads, solver_.threads());
     // Particle snapshots behind the checkpoint are done.
     while (nextSnapshot_ < scene_.particleSnapshots.size() &&
            solver_.time() >= scene_.particleSnapshots[nextSnapshot_] - 0.5 * solver_.timeStep())
@@ -361,7 +356,7 @@ class Run {
     if (snapshots_) book_.snapshotTimes = snapshots_->times();
     writeCheckpoint(checkpointFile_, solver_, book_, options_.sceneHash);
     checkpointStep_ = solver_.step();
-    lastCheckpoint_ = Clock::now();
+    lastCheckpoint_ = WallClock::now();
     ++result_.checkpoints;
   }
 
@@ -412,6 +407,11 @@ class Run {
       j["two_band_points"] = p.twoBandPoints();
       j["bytes_per_particle_two_bands"] = p.bytesPerParticle() + 2 * Particles::bytesPerBand();
     }
+    // Where the steps' wall time went (of this run's steps: after a restart, those since the checkpoint).
+    nlohmann::json phases = nlohmann::json::object();
+    for (std::size_t k = 0; k < kStepPhases; ++k)
+      if (const double t = solver_.phaseSeconds(static_cast<StepPhase>(k)); t > 0.0) phases[toString(static_cast<StepPhase>(k))] = t;
+    j["phase_seconds"] = phases;
     if (!r.completed && !r.stopped) j["error"] = r.error;
     if (r.restartedFrom >= 0) j["restarted_from_step"] = r.restartedFrom;
     if (!r.checkpoint.empty()) {
@@ -424,7 +424,7 @@ class Run {
 
   const Scene& scene_;
   const RunOptions& options_;
-  const Clock::time_point start_;
+  const WallClock::time_point start_;
   Solver solver_;  // throws on a scene it cannot seed, before any output
   const std::filesystem::path checkpointFile_;
   RunResult result_;
@@ -443,7 +443,7 @@ class Run {
   bool anyDriven_ = false;
   // checkpoint
   long checkpointStep_ = -1;  // the step of the checkpoint on disk
-  Clock::time_point lastCheckpoint_;
+  WallClock::time_point lastCheckpoint_;
 };
 
 }  // namespace

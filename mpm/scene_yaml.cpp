@@ -4,6 +4,7 @@
 
 #include "io/material_yaml.hpp"
 #include "io/value_error.hpp"
+#include "mpm/memory_estimate.hpp"
 #include "mpm/presets.hpp"
 
 namespace ecm::mpm {
@@ -282,6 +283,7 @@ Scene readScene(const YamlMap& m) {
   m.finish();
   try {
     s.validate();  // the values, checked in one place (Scene::validate), reported at their lines
+    checkMemory(s);  // and whether the machine can hold the run, before anything is allocated
   } catch (const io::ValueError& e) {
     m.failAt(e.key, e.reason);
   }

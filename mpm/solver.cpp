@@ -14,6 +14,20 @@ Solver::Solver(Scene scene, int threads) {
   state_ = initialState(setup_, std::move(particles));
 }
 
+const char* toString(StepPhase p) {
+  switch (p) {
+    case StepPhase::P2G: return "p2g";
+    case StepPhase::Grid: return "grid";
+    case StepPhase::G2P: return "g2p";
+    case StepPhase::Strain: return "strain";
+    case StepPhase::Stress: return "stress";
+    case StepPhase::Fused: return "fused_pass";
+    case StepPhase::DeferredScatter: return "deferred_scatter";
+    case StepPhase::Rebuild: return "rebuild";
+  }
+  return "?";
+}
+
 Energies Solver::energies() const {
   const Particles& p = state_.particles;
   const Vec2 e = orderedSum(setup_.threads, static_cast<long>(p.size()), Vec2(Vec2::Zero()), [&](long i) {
@@ -29,6 +43,7 @@ Solver::StepState Solver::stepState() const {
   const RunTotals& t = state_.totals;
   StepState s{c0.time, c0.dt, c0.step, t.externalWork, t.dissipated, t.damping, t.substepped, t.released,
               {}, {}, {}, fused_.deferred};
+  std::sort(s.deferred.begin(), s.deferred.end());  // a set: the rebuild orders it by the particles' bins
   for (const auto& c : state_.conditions) {
     s.reactions.push_back(c.reaction);
     s.conditionDisplacements.push_back(c.displacement);

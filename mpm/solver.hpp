@@ -1,6 +1,7 @@
 #pragma once
 // The explicit MPM solver: a scene's setup and state (mpm/state.hpp) and the step that advances
 // them (mpm/step.cpp puts the phases of mpm/phases.hpp in order).
+#include <array>
 #include <vector>
 
 #include "mpm/errors.hpp"
@@ -8,6 +9,20 @@
 #include "mpm/state.hpp"
 
 namespace ecm::mpm {
+
+// The phases a step's wall time is booked to (Solver::phaseSeconds, summary.json "phase_seconds").
+enum class StepPhase {
+  P2G,              // particle-to-grid
+  Grid,             // loads, the grid update, velocity conditions
+  G2P,              // grid-to-particle
+  Strain,           // strain increments (USF, MUSL)
+  Stress,           // material updates (USL fused: the deferred points only)
+  Fused,            // the fused USL pass: G2P, strain, closed-form stress, the next P2G
+  DeferredScatter,  // the fused USL pass's deferred and far points' scatter
+  Rebuild,          // rebuilding the fused scatter (first step, restart, edited state)
+};
+inline constexpr std::size_t kStepPhases = 8;
+const char* toString(StepPhase p);
 
 class Solver {
  public:
@@ -43,6 +58,8 @@ class Solver {
   double damage(std::size_t p) const;  // 0 intact .. 1 fully damaged
   long substepped() const { return state_.totals.substepped; }      // material updates that needed sub-stepping so far
   long snapBackReleases() const { return state_.totals.released; }  // enriched updates that released a snap-back so far
+  // Wall time spent in each phase of the steps so far (s; not kept by a checkpoint).
+  double phaseSeconds(StepPhase p) const { return phaseSeconds_[static_cast<std::size_t>(p)]; }
 
   // The state to change between steps (tests, set-ups, restarts, phases run by hand): the next
   // step rebuilds the grid's scatter from the particles (rebuildGridNextStep) instead of using
@@ -73,8 +90,14 @@ class Solver {
   StepSetup setup_;
   MpmState state_;
   FusedPass fused_;  // written only by step.cpp's fused USL step (and cleared by rebuildGridNextStep)
+  // USF, MUSL: the points the strain pass left to updateStresses (step.cpp).
+  std::vector<std::uint32_t> pending_;
+  std::vector<std::vector<std::uint32_t>> pendingPerThread_;
 
+  std::array<double, kStepPhases> phaseSeconds_{};
   void phases();  // the plain phase sequence of the scheme (step.cpp)
+  template <class Phase>
+  void timed(StepPhase phase, Phase&& run);
 };
 
 }  // namespace ecm::mpm

@@ -8,6 +8,7 @@
 #include "material/material.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/particles.hpp"
+#include "mpm/scatter_order.hpp"
 #include "mpm/scene.hpp"
 
 namespace ecm::mpm {
@@ -62,28 +63,22 @@ struct LoadState {
   Vec2 applied = Vec2::Zero();        // N: the total force applied in the last step
 };
 
-// Where the threads scatter: thread 0 into the grid itself, thread t > 0 into buffer t - 1,
-// summed into the grid in thread order (transfer.cpp).
-struct ScatterBuffers {
-  std::vector<GridAccumulator> buffers;        // one per extra thread
-  std::vector<std::pair<int, int>> touched;    // per buffer: nodes [lo, hi) that may hold values
-  std::vector<std::pair<int, int>> spans;      // per thread: lowest, highest stencil base of its last scatter
-};
-
 // What the fused USL pass carries from one step to the next (fused_transfer.cpp).
 struct FusedPass {
   // The grid holds the scatter of the present particles (their mass, momentum and forces, loads
   // not yet added): the next step starts at its grid phase.
   bool gridHoldsState = false;
   std::vector<std::uint32_t> deferred;  // the points left to updateStresses, in index order
-  std::vector<std::vector<std::uint32_t>> deferredPerThread;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> chunkDeferred;  // per chunk of the scatter order: its range in `deferred`
+  // Per thread, while the pass runs: its deferred points and its far ones (deferred or not).
+  std::vector<std::vector<std::uint32_t>> deferredPerThread, farPerThread;
 };
 
 // Everything a step changes.
 struct MpmState {
   Particles particles;
   GridFields grid;
-  ScatterBuffers scatter;
+  ScatterOrder order;  // the order of the scatter (mpm/scatter_order.hpp)
   std::vector<ConditionState> conditions;  // one per scene condition
   std::vector<LoadState> loads;            // one per scene load
   Clock clock;

@@ -21,24 +21,38 @@
 // The fused USL gives the plain sequence's results up to the order of the sums: within a part of
 // the particles it adds the closed-form points before the deferred ones (1e-12 relative on the
 // DEN; tests/mpm/den_test.cpp).
+#include <omp.h>
+
 #include "mpm/solver.hpp"
 
 namespace ecm::mpm {
 
+template <class Phase>
+void Solver::timed(StepPhase phase, Phase&& run) {
+  const double start = omp_get_wtime();
+  run();
+  phaseSeconds_[static_cast<std::size_t>(phase)] += omp_get_wtime() - start;
+}
+
 void Solver::advance() {
   const StepSetup& s = setup_;
   MpmState& st = state_;
+  Particles& p = st.particles;
+  GridFields& grid = st.grid;
+  const Clock& clock = st.clock;
   if (s.scene.solver.scheme == UpdateScheme::USL) {
     if (!fused_.gridHoldsState)  // P2G of this step: first step, restart, state edited
-      scatterState(s, st.clock.step, st.particles, st.grid, st.scatter, fused_);
+      timed(StepPhase::Rebuild, [&] { scatterState(s, clock.step, p, grid, st.order, fused_); });
     fused_.gridHoldsState = false;  // until the pass below has scattered every point anew
-    addLoads(s, st.clock.time, st.particles, st.grid, st.loads);
-    updateGrid(s, st.clock, st.grid, st.conditions, st.totals);
-    // G2P, strain, closed-form stresses, the next step's P2G
-    const bool inGrid = gatherStressScatter(s, st.clock, st.grid, st.particles, st.scatter, fused_);
-    updateStresses(s, st.clock.step, st.particles, st.totals, &fused_.deferred);  // the deferred points
+    timed(StepPhase::Grid, [&] {
+      addLoads(s, clock.time, p, grid, st.loads);
+      updateGrid(s, clock, grid, st.conditions, st.totals);
+    });
+    bool inGrid = false;  // G2P, strain, closed-form stresses, the next step's P2G
+    timed(StepPhase::Fused, [&] { inGrid = gatherStressScatter(s, clock, grid, p, st.order, fused_); });
+    timed(StepPhase::Stress, [&] { updateStresses(s, clock.step, p, st.totals, &fused_.deferred); });  // the deferred points
     if (inGrid) {  // (a stencil that left the grid is reported by the next step's scatterState)
-      scatterDeferred(s, st.particles, st.grid, st.scatter, fused_);  // their share of the next step's P2G
+      timed(StepPhase::DeferredScatter, [&] { scatterDeferred(s, p, grid, st.order, fused_); });  // their share of the next P2G
       fused_.gridHoldsState = true;
     }
   } else {
@@ -61,33 +75,39 @@ void Solver::phases() {
   GridFields& grid = st.grid;
   const Clock& clock = st.clock;
   fused_.gridHoldsState = false;  // the plain phases leave no scatter for the next step
+  const auto p2g = [&](unsigned what) {
+    timed(StepPhase::P2G, [&] { particleToGrid(s, clock.step, p, grid, st.order, what); });
+    if (what & kForces) timed(StepPhase::Grid, [&] { addLoads(s, clock.time, p, grid, st.loads); });
+  };
+  const auto gridUpdate = [&] { timed(StepPhase::Grid, [&] { updateGrid(s, clock, grid, st.conditions, st.totals); }); };
+  const auto velocities = [&] { timed(StepPhase::Grid, [&] { gridVelocities(s, clock, grid, st.conditions); }); };
+  const auto g2p = [&](bool strain) { timed(StepPhase::G2P, [&] { gridToParticle(s, clock, grid, p, strain); }); };
+  const auto stress = [&] { timed(StepPhase::Stress, [&] { updateStresses(s, clock.step, p, st.totals); }); };
+  const auto strainStress = [&] {  // strain and closed-form stresses in one pass, then the others
+    timed(StepPhase::Strain, [&] { strainAndClosedFormStress(s, clock.dt, grid, p, pending_, pendingPerThread_); });
+    timed(StepPhase::Stress, [&] { updateStresses(s, clock.step, p, st.totals, &pending_); });
+  };
   switch (s.scene.solver.scheme) {
     case UpdateScheme::USF:  // update stress first: strain from the step's starting velocities
-      particleToGrid(s, clock.step, p, grid, st.scatter, kStencils | kMassMomentum);
-      gridVelocities(s, clock, grid, st.conditions);
-      computeStrainIncrements(s, clock.dt, grid, p);
-      updateStresses(s, clock.step, p, st.totals);
-      particleToGrid(s, clock.step, p, grid, st.scatter, kForces);
-      addLoads(s, clock.time, p, grid, st.loads);
-      updateGrid(s, clock, grid, st.conditions, st.totals);
-      gridToParticle(s, clock, grid, p, false);
+      p2g(kStencils | kMassMomentum);
+      velocities();
+      strainStress();  // = strain(); stress();
+      p2g(kForces);
+      gridUpdate();
+      g2p(false);
       break;
     case UpdateScheme::USL:  // update stress last: strain from the updated grid velocities
-      particleToGrid(s, clock.step, p, grid, st.scatter, kStencils | kMassMomentum | kForces);
-      addLoads(s, clock.time, p, grid, st.loads);
-      updateGrid(s, clock, grid, st.conditions, st.totals);
-      gridToParticle(s, clock, grid, p, true);
-      updateStresses(s, clock.step, p, st.totals);
+      p2g(kStencils | kMassMomentum | kForces);
+      gridUpdate();
+      g2p(true);
+      stress();
       break;
     case UpdateScheme::MUSL:  // modified USL: the grid velocities remapped from the updated particles
-      particleToGrid(s, clock.step, p, grid, st.scatter, kStencils | kMassMomentum | kForces);
-      addLoads(s, clock.time, p, grid, st.loads);
-      updateGrid(s, clock, grid, st.conditions, st.totals);
-      gridToParticle(s, clock, grid, p, false);
-      particleToGrid(s, clock.step, p, grid, st.scatter, kMassMomentum);
-      gridVelocities(s, clock, grid, st.conditions);
-      computeStrainIncrements(s, clock.dt, grid, p);
-      updateStresses(s, clock.step, p, st.totals);
+      p2g(kStencils | kMassMomentum | kForces);
+      gridUpdate();
+      timed(StepPhase::G2P, [&] { gridToParticleAndRemap(s, clock, grid, p, st.order); });  // = g2p(false); p2g(kMassMomentum);
+      velocities();
+      strainStress();  // = strain(); stress();
       break;
   }
 }

@@ -1,7 +1,8 @@
-// Particle-to-grid and grid-to-particle transfers. Each thread scatters a fixed contiguous range
-// of particles into its own grid buffer (thread 0 straight into the grid); the buffers are then
-// summed node by node in thread order. No locks; a node only sees a different summation order
-// when particles of two ranges share it.
+// Particle-to-grid and grid-to-particle transfers. The scatter runs chunk by chunk in the fixed
+// order of mpm/scatter_order.hpp (colour, chunk, particle index), straight into the grid: no
+// per-thread copy of the grid, no locks, and every node sums its particles in the same order on
+// any number of threads. The gathers only read the grid: any split of the particles gives the
+// same bits.
 #include <omp.h>
 
 #include <algorithm>
@@ -19,38 +20,77 @@ namespace {
 using detail::kNoParticle;
 using detail::ScatterTarget;
 
+struct ScatterSetup {
+  const Grid& grid;
+  Vec2 invCell, halfWidth, gravity;
+  const ScatterOrder& order;
+};
+
+// The particles of chunk c in index order; Stencils: located at their positions first, and the
+// rows they start on measured. A particle whose stencil starts outside the chunk's plan does not
+// scatter here (with Stencils it goes to `far`). Returns the first particle whose stencil left
+// the grid.
 template <ShapeFunction F, bool Stencils, bool MassMomentum, bool Forces>
-std::size_t scatter(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, Particles& p, std::size_t begin,
-                    std::size_t end, const Vec2& gravity, ScatterTarget out) {
-  const int nx = g.nodesX();
-  const bool withGravity = Forces && (gravity[0] != 0.0 || gravity[1] != 0.0);
-  for (std::size_t i = begin; i < end; ++i) {
-    if constexpr (Stencils)
-      if (!locateStencil<F>(g, invCell, halfWidth, p.position[i], p.stencilAt[i])) return i;
+std::size_t scatterChunk(const ScatterSetup& t, Particles& p, std::size_t c, ScatterTarget out, RowSpan& measured,
+                         std::vector<std::uint32_t>& far) {
+  const int nx = t.grid.nodesX();
+  const bool withGravity = Forces && (t.gravity[0] != 0.0 || t.gravity[1] != 0.0);
+  const auto [first, last] = t.order.range(c, p.size());
+  const auto [lo, hi] = t.order.plannedBases(c);
+  std::size_t bad = kNoParticle;
+  BaseSpan span;
+  for (std::size_t i = first; i < last; ++i) {
+    if constexpr (Stencils) {
+      if (!locateStencil<F>(t.grid, t.invCell, t.halfWidth, p.position[i], p.stencilAt[i])) {
+        bad = std::min(bad, i);
+        continue;
+      }
+      span.add(p.stencilAt[i].base);
+    }
+    const std::int32_t base = p.stencilAt[i].base;
+    if (base < lo || base >= hi) {
+      if constexpr (Stencils) far.push_back(static_cast<std::uint32_t>(i));
+      continue;
+    }
     Stencil s;
-    expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
-    detail::scatterParticle<F, MassMomentum, Forces>(s, nx, p, i, gravity, withGravity, out);
+    expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
+    detail::scatterParticle<F, MassMomentum, Forces>(s, nx, p, i, t.gravity, withGravity, out);
   }
-  return kNoParticle;
+  if constexpr (Stencils) measured = span.rows(nx);
+  return bad;
 }
 
-using ScatterFn = std::size_t (*)(const Grid&, const Vec2&, const Vec2&, Particles&, std::size_t, std::size_t,
-                                  const Vec2&, ScatterTarget);
+template <ShapeFunction F, bool MassMomentum, bool Forces>
+void scatterListed(const ScatterSetup& t, Particles& p, const std::vector<std::uint32_t>& listed, ScatterTarget out) {
+  const int nx = t.grid.nodesX();
+  const bool withGravity = Forces && (t.gravity[0] != 0.0 || t.gravity[1] != 0.0);
+  for (const std::uint32_t i : listed) {
+    Stencil s;
+    expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
+    detail::scatterParticle<F, MassMomentum, Forces>(s, nx, p, i, t.gravity, withGravity, out);
+  }
+}
 
-template <ShapeFunction F>
-ScatterFn scatterFor(unsigned what) {
+struct ScatterFns {
+  std::size_t (*chunk)(const ScatterSetup&, Particles&, std::size_t, ScatterTarget, RowSpan&,
+                       std::vector<std::uint32_t>&);
+  void (*listed)(const ScatterSetup&, Particles&, const std::vector<std::uint32_t>&, ScatterTarget);
+};
+
+template <ShapeFunction F, bool MassMomentum, bool Forces>
+ScatterFns scatterFns(bool stencils) {
+  return {stencils ? scatterChunk<F, true, MassMomentum, Forces> : scatterChunk<F, false, MassMomentum, Forces>,
+          scatterListed<F, MassMomentum, Forces>};
+}
+
+ScatterFns scatterFor(ShapeFunction f, unsigned what) {
   const bool st = what & kStencils, mm = what & kMassMomentum, fo = what & kForces;
-  if (st && mm && fo) return scatter<F, true, true, true>;
-  if (st && mm) return scatter<F, true, true, false>;
-  if (mm && fo) return scatter<F, false, true, true>;
-  if (mm) return scatter<F, false, true, false>;
-  if (st && fo) return scatter<F, true, false, true>;
-  if (fo) return scatter<F, false, false, true>;
-  return scatter<F, true, false, false>;
-}
-
-ScatterFn scatterFor(ShapeFunction f, unsigned what) {
-  return withShapeFunction(f, [what]<ShapeFunction F>() { return scatterFor<F>(what); });
+  return withShapeFunction(f, [&]<ShapeFunction F>() -> ScatterFns {
+    if (mm && fo) return scatterFns<F, true, true>(st);
+    if (mm) return scatterFns<F, true, false>(st);
+    if (fo) return scatterFns<F, false, true>(st);
+    return scatterFns<F, false, false>(st);
+  });
 }
 
 template <ShapeFunction F, bool WithStrain>
@@ -83,6 +123,46 @@ void strainIncrements(const Grid& g, const Vec2& invCell, const Vec2& halfWidth,
   }
 }
 
+// Strain increments and, where there is one, the closed-form stress; the other points are listed.
+template <ShapeFunction F>
+void strainStress(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, const GridFields& grid, Particles& p,
+                  std::size_t begin, std::size_t end, double dt, const Material* materials,
+                  std::vector<std::uint32_t>& deferred) {
+  const int nx = g.nodesX();
+  for (std::size_t i = begin; i < end; ++i) {
+    Stencil s;
+    expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
+    const Voigt d = detail::strainIncrement(detail::gatherParticle<F, true>(s, nx, grid), dt);
+    if (materials[p.material[i]].closedFormStress(d, p.band[i] >= 0, p.strain[i], p.stress[i])) continue;
+    p.strainIncrement[i] = d;
+    deferred.push_back(static_cast<std::uint32_t>(i));
+  }
+}
+
+// MUSL: chunk c's grid-to-particle and the remap of its new velocities to the grid (mass and
+// momentum, with the step's stencils). Returns the first particle with a non-finite value.
+template <ShapeFunction F>
+std::size_t gatherRemapChunk(const ScatterSetup& t, const GridFields& grid, Particles& p, std::size_t c, double dt,
+                             double flip, ScatterTarget out) {
+  const int nx = t.grid.nodesX();
+  const double pic = 1.0 - flip;
+  const auto [first, last] = t.order.range(c, p.size());
+  const auto [lo, hi] = t.order.plannedBases(c);
+  std::size_t bad = kNoParticle;
+  for (std::size_t i = first; i < last; ++i) {
+    Stencil s;
+    expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
+    const detail::Gathered at = detail::gatherParticle<F, false>(s, nx, grid);
+    Vec2& vp = p.velocity[i];
+    vp = flip * (vp + at.velocityChange) + pic * at.velocity;
+    p.position[i] += dt * at.velocity;
+    if (bad == kNoParticle && !(vp.allFinite() && p.position[i].allFinite())) bad = i;
+    if (s.base < lo || s.base >= hi) continue;  // far: remapped after the colours
+    detail::scatterParticle<F, true, false>(s, nx, p, i, t.gravity, false, out);
+  }
+  return bad;
+}
+
 using GatherFn = std::size_t (*)(const Grid&, const Vec2&, const Vec2&, const GridFields&, Particles&, std::size_t,
                                  std::size_t, double, double);
 using StrainFn = void (*)(const Grid&, const Vec2&, const Vec2&, const GridFields&, Particles&, std::size_t, std::size_t,
@@ -92,45 +172,32 @@ GatherFn gatherFor(ShapeFunction f, bool withStrain) {
   return withShapeFunction(f, [withStrain]<ShapeFunction F>() -> GatherFn { return withStrain ? gather<F, true> : gather<F, false>; });
 }
 
-ScatterTarget part(GridFields& grid, ScatterBuffers& scatter, int t) {
-  return t == 0 ? detail::targetOf(grid) : detail::targetOf(scatter.buffers[static_cast<std::size_t>(t - 1)]);
-}
-
-// Buffer t added into the grid over nodes [lo, hi). Buffer by buffer, node by node: every node
-// sums the buffers in part order.
-void addScatterBuffer(int threads, const GridAccumulator& a, GridFields& grid, unsigned what, int lo, int hi) {
-#pragma omp parallel for num_threads(threads) schedule(static)
-  for (int node = lo; node < hi; ++node) {
-    const auto k = static_cast<std::size_t>(node);
-    if (what & kMassMomentum) {
-      grid.mass[k] += a.mass[k];
-      grid.momentum[k] += a.momentum[k];
-    }
-    if (what & kForces) {
-      grid.force[k] += a.force[k];
-      grid.externalForce[k] += a.externalForce[k];
-    }
-  }
-}
-
 }  // namespace
 
 namespace detail {
 
-ScatterTarget targetOfPart(GridFields& grid, ScatterBuffers& scatter, int t) { return part(grid, scatter, t); }
-
-void sumTouchedNodes(const StepSetup& setup, GridFields& grid, ScatterBuffers& scatter) {
-  const Grid& g = setup.scene.grid;
-  const int nx = g.nodesX(), nodes = g.nodeCount();
-  const int s = supportSize(setup.scene.solver.shapeFunction);
-  const int reach = (s - 1) * nx + s;
-  for (int t = 1; t < setup.threads; ++t) {
-    const auto [lo, hi] = scatter.spans[static_cast<std::size_t>(t)];
-    const std::pair<int, int> range = lo > hi ? std::pair{0, 0} : std::pair{lo, std::min(nodes, hi + reach)};
-    scatter.touched[static_cast<std::size_t>(t - 1)] = range;
-    addScatterBuffer(setup.threads, scatter.buffers[static_cast<std::size_t>(t - 1)], grid, kMassMomentum | kForces,
-                     range.first, range.second);
+void zeroScatterFields(int threads, GridFields& grid, bool massMomentum, bool forces) {
+  const auto nodes = static_cast<long>(grid.mass.size());
+#pragma omp parallel for num_threads(threads) schedule(static)
+  for (long n = 0; n < nodes; ++n) {
+    const auto k = static_cast<std::size_t>(n);
+    if (massMomentum) {
+      grid.mass[k] = 0.0;
+      grid.momentum[k].setZero();
+    }
+    if (forces) {
+      grid.force[k].setZero();
+      grid.externalForce[k].setZero();
+    }
   }
+}
+
+void mergeSorted(std::vector<std::vector<std::uint32_t>>& perThread, std::vector<std::uint32_t>& into) {
+  for (auto& v : perThread) {
+    into.insert(into.end(), v.begin(), v.end());
+    v.clear();
+  }
+  std::sort(into.begin(), into.end());
 }
 
 void throwNotFinite(long step, const Particles& particles, std::size_t p) {
@@ -152,32 +219,30 @@ void throwLeftGrid(const Scene& scene, long step, const Particles& particles, st
 
 }  // namespace detail
 
-void particleToGrid(const StepSetup& setup, long step, Particles& particles, GridFields& grid, ScatterBuffers& scatter,
+void particleToGrid(const StepSetup& setup, long step, Particles& particles, GridFields& grid, ScatterOrder& order,
                     unsigned what) {
   const Scene& scene = setup.scene;
-  const ScatterFn fn = scatterFor(scene.solver.shapeFunction, what);
-  const int nodes = scene.grid.nodeCount();
-  const std::size_t count = particles.size();
-  std::size_t bad = kNoParticle;
-  int used = 1;
-#pragma omp parallel num_threads(setup.threads)
-  {
-    const int t = omp_get_thread_num(), n = omp_get_num_threads();
-#pragma omp single
-    used = n;
-    const ScatterTarget target = part(grid, scatter, t);
-    detail::zeroTarget(target, nodes, what & kMassMomentum, what & kForces);
-    const auto [b, e] = detail::partRange(count, t, n);
-    const std::size_t mine = fn(scene.grid, setup.invCell, setup.halfWidth, particles, b, e, scene.solver.gravity, target);
-    if (mine != kNoParticle) {
-#pragma omp critical(ecm_mpm_failure)
-      bad = std::min(bad, mine);
-    }
+  const Grid& g = scene.grid;
+  const int threads = setup.threads;
+  if (what & kStencils) {  // this step's plan, from where the stencils started in the last one
+    planScatter(order, g.nodesY());
+    order.far.clear();
   }
-  if (bad != kNoParticle) detail::throwLeftGrid(scene, step, particles, bad);
-  for (int t = 1; t < used; ++t)
-    addScatterBuffer(setup.threads, scatter.buffers[static_cast<std::size_t>(t - 1)], grid, what, 0, nodes);
-  scatter.touched.assign(scatter.buffers.size(), {0, nodes});  // the buffers hold values anywhere
+  detail::zeroScatterFields(threads, grid, what & kMassMomentum, what & kForces);
+  const ScatterFns fn = scatterFor(scene.solver.shapeFunction, what);
+  const ScatterSetup t{g, setup.invCell, setup.halfWidth, scene.solver.gravity, order};
+  const ScatterTarget target = detail::targetOf(grid);
+  std::vector<std::vector<std::uint32_t>> far(static_cast<std::size_t>(threads));
+  std::vector<std::size_t> bad(static_cast<std::size_t>(threads), kNoParticle);
+  std::vector<RowSpan>& measured = order.measured;
+  forEachChunkByColour(order, threads, [&](std::size_t c, int th) {
+    const auto k = static_cast<std::size_t>(th);
+    bad[k] = std::min(bad[k], fn.chunk(t, particles, c, target, measured[c], far[k]));
+  });
+  const std::size_t first = *std::min_element(bad.begin(), bad.end());
+  if (first != kNoParticle) detail::throwLeftGrid(scene, step, particles, first);
+  if (what & kStencils) detail::mergeSorted(far, order.far);
+  fn.listed(t, particles, order.far, target);  // after the colours, one at a time
 }
 
 void gridToParticle(const StepSetup& setup, const Clock& clock, const GridFields& grid, Particles& particles,
@@ -196,6 +261,46 @@ void gridToParticle(const StepSetup& setup, const Clock& clock, const GridFields
     }
   }
   if (bad != kNoParticle) detail::throwNotFinite(clock.step, particles, bad);
+}
+
+void strainAndClosedFormStress(const StepSetup& setup, double dt, const GridFields& grid, Particles& particles,
+                               std::vector<std::uint32_t>& deferred,
+                               std::vector<std::vector<std::uint32_t>>& deferredPerThread) {
+  const Scene& scene = setup.scene;
+  const std::size_t count = particles.size();
+  using Fn = void (*)(const Grid&, const Vec2&, const Vec2&, const GridFields&, Particles&, std::size_t, std::size_t,
+                      double, const Material*, std::vector<std::uint32_t>&);
+  const Fn fn = withShapeFunction(scene.solver.shapeFunction, []<ShapeFunction F>() -> Fn { return strainStress<F>; });
+  deferredPerThread.resize(static_cast<std::size_t>(setup.threads));
+#pragma omp parallel num_threads(setup.threads)
+  {
+    const int t = omp_get_thread_num();
+    std::vector<std::uint32_t>& mine = deferredPerThread[static_cast<std::size_t>(t)];
+    mine.clear();
+    const auto [b, e] = detail::partRange(count, t, omp_get_num_threads());
+    fn(scene.grid, setup.invCell, setup.halfWidth, grid, particles, b, e, dt, setup.materials.data(), mine);
+  }
+  deferred.clear();  // thread t's range precedes thread t + 1's: the joined list is in index order
+  for (const auto& mine : deferredPerThread) deferred.insert(deferred.end(), mine.begin(), mine.end());
+}
+
+void gridToParticleAndRemap(const StepSetup& setup, const Clock& clock, GridFields& grid, Particles& particles,
+                            const ScatterOrder& order) {
+  const Scene& scene = setup.scene;
+  const int threads = setup.threads;
+  detail::zeroScatterFields(threads, grid, true, false);
+  const ScatterSetup t{scene.grid, setup.invCell, setup.halfWidth, scene.solver.gravity, order};
+  const ScatterTarget target = detail::targetOf(grid);
+  std::vector<std::size_t> bad(static_cast<std::size_t>(threads), kNoParticle);
+  withShapeFunction(scene.solver.shapeFunction, [&]<ShapeFunction F>() {
+    forEachChunkByColour(order, threads, [&](std::size_t c, int th) {
+      const auto k = static_cast<std::size_t>(th);
+      bad[k] = std::min(bad[k], gatherRemapChunk<F>(t, grid, particles, c, clock.dt, scene.solver.flip, target));
+    });
+    scatterListed<F, true, false>(t, particles, order.far, target);  // after the colours, one at a time
+  });
+  const std::size_t first = *std::min_element(bad.begin(), bad.end());
+  if (first != kNoParticle) detail::throwNotFinite(clock.step, particles, first);
 }
 
 void computeStrainIncrements(const StepSetup& setup, double dt, const GridFields& grid, Particles& particles) {

@@ -1,7 +1,7 @@
 #pragma once
 // One particle's share of the transfers, shared by the separate phases (transfer.cpp) and the
 // fused USL pass (fused_transfer.cpp): its scatter to the nodes of its stencil, its gather from
-// them. Internal to mpm/.
+// them; and what both do around them. Internal to mpm/.
 #include <algorithm>
 #include <cstddef>
 #include <limits>
@@ -10,11 +10,11 @@
 #include "mpm/grid.hpp"
 #include "mpm/particles.hpp"
 #include "mpm/shape_function.hpp"
-#include "mpm/state.hpp"
+#include "mpm/scene.hpp"
 
 namespace ecm::mpm::detail {
 
-// Where a scatter accumulates: the grid itself or one thread's buffer.
+// Where a scatter accumulates (the grid's fields).
 struct ScatterTarget {
   double* mass;
   Vec2* momentum;
@@ -25,58 +25,18 @@ struct ScatterTarget {
 inline ScatterTarget targetOf(GridFields& g) {
   return {g.mass.data(), g.momentum.data(), g.force.data(), g.externalForce.data()};
 }
-inline ScatterTarget targetOf(GridAccumulator& a) {
-  return {a.mass.data(), a.momentum.data(), a.force.data(), a.externalForce.data()};
-}
 
-inline void zeroTarget(ScatterTarget t, int nodes, bool massMomentum, bool forces) {
-  const auto n = static_cast<std::size_t>(nodes);
-  if (massMomentum) {
-    std::fill(t.mass, t.mass + n, 0.0);
-    std::fill(t.momentum, t.momentum + n, Vec2::Zero());
-  }
-  if (forces) {
-    std::fill(t.force, t.force + n, Vec2::Zero());
-    std::fill(t.externalForce, t.externalForce + n, Vec2::Zero());
-  }
-}
-
-// Zeroes nodes [lo, hi) of a target.
-inline void zeroNodes(ScatterTarget t, int lo, int hi) {
-  if (hi <= lo) return;
-  const auto a = static_cast<std::size_t>(lo), b = static_cast<std::size_t>(hi);
-  std::fill(t.mass + a, t.mass + b, 0.0);
-  std::fill(t.momentum + a, t.momentum + b, Vec2::Zero());
-  std::fill(t.force + a, t.force + b, Vec2::Zero());
-  std::fill(t.externalForce + a, t.externalForce + b, Vec2::Zero());
-}
-
-// The first nodes (Stencil::base) of the stencils a part scattered to, lowest and highest: the
-// nodes it touched lie in [lo, hi + (S - 1) nx + S).
-struct BaseSpan {
-  int lo = std::numeric_limits<int>::max(), hi = std::numeric_limits<int>::min();
-  void add(int base) {
-    lo = std::min(lo, base);
-    hi = std::max(hi, base);
-  }
-  void add(const BaseSpan& o) {
-    lo = std::min(lo, o.lo);
-    hi = std::max(hi, o.hi);
-  }
-};
-
-// Thread t's scatter target: the grid (t = 0) or buffer t - 1 (transfer.cpp).
-ScatterTarget targetOfPart(GridFields& grid, ScatterBuffers& scatter, int t);
-// Adds each thread's buffer into the grid over the nodes its last scatter touched (its span
-// widened by the stencil's reach), which are also the only nodes the next step has to zero.
-void sumTouchedNodes(const StepSetup& setup, GridFields& grid, ScatterBuffers& scatter);
+// Zeroes what a scatter accumulates (mass and momentum, forces) at every node.
+void zeroScatterFields(int threads, GridFields& grid, bool massMomentum, bool forces);
+// Moves the threads' lists into `into` (appended) and sorts it.
+void mergeSorted(std::vector<std::vector<std::uint32_t>>& perThread, std::vector<std::uint32_t>& into);
 // The failures of the transfers, as SimulationError (step: the steps taken).
 [[noreturn]] void throwNotFinite(long step, const Particles& particles, std::size_t p);
 [[noreturn]] void throwLeftGrid(const Scene& scene, long step, const Particles& particles, std::size_t p);
 
 inline constexpr std::size_t kNoParticle = std::numeric_limits<std::size_t>::max();
 
-// The particle range of part t of n (a fixed partition, independent of scheduling).
+// The particle range of part t of n (for the gathers: each particle on its own, any split gives the same bits).
 inline std::pair<std::size_t, std::size_t> partRange(std::size_t count, int t, int n) {
   return {count * static_cast<std::size_t>(t) / static_cast<std::size_t>(n),
           count * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(n)};

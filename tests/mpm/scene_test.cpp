@@ -103,7 +103,7 @@ TEST(ParticleToGrid, ConservesMassAndMomentumAndInternalForcesSumToZero) {
       mass += p.mass[i];
       momentum += p.mass[i] * p.velocity[i];
     }
-    particleToGrid(solver.setup(), 0, p, st.grid, st.scatter, kStencils | kMassMomentum | kForces);
+    particleToGrid(solver.setup(), 0, p, st.grid, st.order, kStencils | kMassMomentum | kForces);
     const auto& g = st.grid;
     double gm = 0.0;
     Vec2 gp = Vec2::Zero(), gf = Vec2::Zero();

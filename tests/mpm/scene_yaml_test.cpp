@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "../io/temp_dir.hpp"
+#include "mpm/memory_estimate.hpp"
 #include "mpm/presets.hpp"
 #include "mpm/scene_yaml.hpp"
 
@@ -201,6 +202,33 @@ TEST(SceneYaml, ValueErrorsFromValidateAreReportedAtTheirKeysLine) {
           "    history: {type: linear_ramp, value: 1, time: -1}\n");  // line 14
   EXPECT_EQ(e.line, 14);
   expectContains(e.what(), "key 'loads[0].history'");
+}
+
+// A scene the machine cannot hold is refused before anything is allocated, at its grid's line,
+// with the estimate and the memory available: 40000 x 40000 cells of 2 x 2 particles is 6.4e9
+// particles at most and 1.6e9 nodes, about 1.5 TiB.
+TEST(SceneYaml, ASceneTooLargeForTheMachineIsRefusedAtItsGrid) {
+  std::string big = kScene;
+  big.replace(big.find("cells: [10, 12]"), 15, "cells: [40000, 40000]");
+  big.replace(big.find("max: [100, 100]"), 15, "max: [400000, 400000]");
+  const Scene asRead = [&] {  // the same scene's estimate, without the check
+    Scene s;
+    s.grid = {Vec2::Zero(), Vec2(10.0, 10.0), 40000, 40000};
+    s.bodies = {{Shape::rectangle(Vec2::Zero(), Vec2(400000.0, 400000.0)), 0, false, Vec2::Zero()}};
+    s.particlesPerCell = 2;
+    return s;
+  }();
+  const MemoryEstimate e = estimateMemory(asRead);
+  EXPECT_GT(e.particles, 6'000'000'000u);
+  EXPECT_GT(e.bytes, 1'000'000'000'000u);
+  const std::optional<std::size_t> available = availableMemory();
+  if (!available) GTEST_SKIP() << "this machine does not say how much memory it has";
+  ASSERT_LT(*available, e.bytes) << "a machine with more than 1.5 TiB free holds this scene";
+  const io::InputError err = inputError([&] { readScene(io::parseYaml(big, "big.yaml")); });
+  EXPECT_EQ(err.line, 2);
+  expectContains(err.what(), "big.yaml:2");
+  expectContains(err.what(), "key 'grid'");
+  expectContains(err.what(), "GiB available");
 }
 
 // stop_when names one of the scene's conditions, a fraction in (0, 1) and a time before end_time.
