@@ -5,7 +5,7 @@
 //   loads   addLoads (grid_update.cpp)          the scene's loads at the nodes
 //   grid    updateGrid (grid_update.cpp)        v = p / m, forces and damping -> v^{n+1}, conditions, reactions
 //   G2P     gridToParticle (transfer.cpp)       velocities (PIC/FLIP), positions, optionally strain increments
-//   strain  computeStrainIncrements             d eps = dt sym grad v at the particle
+//   strain  strainAndClosedFormStress           d eps = dt sym grad v at the particle (and the closed-form stress)
 //   stress  updateStresses (stress_update.cpp)  Material::update of the particles
 // A phase that finds a particle outside the grid, a non-finite value or a failed material update
 // throws SimulationError (mpm/errors.hpp) naming the step, the particle and where it is.
@@ -51,12 +51,10 @@ void gridVelocities(const StepSetup& setup, const Clock& clock, GridFields& grid
 // G2P: velocities (PIC/FLIP), positions and, withStrainIncrements, the strain increments.
 void gridToParticle(const StepSetup& setup, const Clock& clock, const GridFields& grid, Particles& particles,
                     bool withStrainIncrements);
-// The strain increments from the grid velocities.
-void computeStrainIncrements(const StepSetup& setup, double dt, const GridFields& grid, Particles& particles);
 // The strain increments and, in the same pass, the closed-form stresses (elastic and intact
 // points far from onset, Material::closedFormStress); the other points are listed in `deferred`
-// (index order) with their increments, for updateStresses. The same results as
-// computeStrainIncrements then updateStresses, one pass over the particles fewer.
+// (index order) with their increments, for updateStresses. The same per-point results as taking
+// the increments first and updateStresses on every point after, one pass over the particles fewer.
 void strainAndClosedFormStress(const StepSetup& setup, double dt, const GridFields& grid, Particles& particles,
                                std::vector<std::uint32_t>& deferred,
                                std::vector<std::vector<std::uint32_t>>& deferredPerThread);

@@ -18,8 +18,10 @@
 // docs/performance.md "Scaling with the cores" has the design and its measurements.
 #include <omp.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "mpm/grid.hpp"

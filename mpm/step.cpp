@@ -4,7 +4,7 @@
 //   P2G    particleToGrid + addLoads   mass, momentum and forces from the particles to the nodes
 //   grid   updateGrid                  v = p / m, f -> v^{n+1} with damping, the node conditions and reactions
 //   G2P    gridToParticle              velocities (PIC/FLIP) and positions back to the particles
-//   strain computeStrainIncrements or gridToParticle(.., true)   d eps = dt sym grad v at the particle
+//   strain strainAndClosedFormStress or gridToParticle(.., true)   d eps = dt sym grad v at the particle
 //   stress updateStresses              Material::update of every particle (material/material.hpp)
 //
 // USL, the default, runs the same phases fused into one pass over the particles

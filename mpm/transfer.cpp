@@ -112,17 +112,6 @@ std::size_t gather(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, co
   return bad;
 }
 
-template <ShapeFunction F>
-void strainIncrements(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, const GridFields& grid, Particles& p,
-                      std::size_t begin, std::size_t end, double dt) {
-  const int nx = g.nodesX();
-  for (std::size_t i = begin; i < end; ++i) {
-    Stencil s;
-    expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
-    p.strainIncrement[i] = detail::strainIncrement(detail::gatherParticle<F, true>(s, nx, grid), dt);
-  }
-}
-
 // Strain increments and, where there is one, the closed-form stress; the other points are listed.
 template <ShapeFunction F>
 void strainStress(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, const GridFields& grid, Particles& p,
@@ -165,8 +154,6 @@ std::size_t gatherRemapChunk(const ScatterSetup& t, const GridFields& grid, Part
 
 using GatherFn = std::size_t (*)(const Grid&, const Vec2&, const Vec2&, const GridFields&, Particles&, std::size_t,
                                  std::size_t, double, double);
-using StrainFn = void (*)(const Grid&, const Vec2&, const Vec2&, const GridFields&, Particles&, std::size_t, std::size_t,
-                          double);
 
 GatherFn gatherFor(ShapeFunction f, bool withStrain) {
   return withShapeFunction(f, [withStrain]<ShapeFunction F>() -> GatherFn { return withStrain ? gather<F, true> : gather<F, false>; });
@@ -301,17 +288,6 @@ void gridToParticleAndRemap(const StepSetup& setup, const Clock& clock, GridFiel
   });
   const std::size_t first = *std::min_element(bad.begin(), bad.end());
   if (first != kNoParticle) detail::throwNotFinite(clock.step, particles, first);
-}
-
-void computeStrainIncrements(const StepSetup& setup, double dt, const GridFields& grid, Particles& particles) {
-  const Scene& scene = setup.scene;
-  const std::size_t count = particles.size();
-  const StrainFn fn = withShapeFunction(scene.solver.shapeFunction, []<ShapeFunction F>() -> StrainFn { return strainIncrements<F>; });
-#pragma omp parallel num_threads(setup.threads)
-  {
-    const auto [b, e] = detail::partRange(count, omp_get_thread_num(), omp_get_num_threads());
-    fn(scene.grid, setup.invCell, setup.halfWidth, grid, particles, b, e, dt);
-  }
 }
 
 }  // namespace ecm::mpm
