@@ -24,9 +24,11 @@ double prescribed(const ComponentCondition& c, double t, double dt) {
 }
 
 // The velocity conditions at the nodes: prescribed components take their velocity over
-// [t, t + dt]. Given the totals, the reactions are recorded and their work added to them.
+// [t, t + dt]. Given the totals, the reactions are recorded and their work added to them, and the
+// loads' work, summed by updateGrid with the free velocities, is corrected to the prescribed ones
+// (withLoads: the grid carries loads or gravity).
 void applyVelocityConditions(const StepSetup& setup, const Clock& clock, GridFields& grid,
-                             std::vector<ConditionState>& conditions, RunTotals* totals) {
+                             std::vector<ConditionState>& conditions, RunTotals* totals, bool withLoads) {
   const Scene& scene = setup.scene;
   const double t = clock.time, dt = clock.dt;
   for (std::size_t c = 0; c < scene.conditions.size(); ++c) {
@@ -40,7 +42,7 @@ void applyVelocityConditions(const StepSetup& setup, const Clock& clock, GridFie
       const auto n = static_cast<std::size_t>(node);
       const double m = grid.mass[n];
       if (!(m > 0.0)) continue;
-      const Vec2 vOld = grid.momentum[n] / m;
+      const Vec2 vOld = grid.momentum[n] * (1.0 / m);  // v = p (1 / m), as the other grid loops take it
       Vec2 vp(vx, vy);
       if (cond.field) vp = scale * cond.field->gradient * (scene.grid.nodePosition(node) - cond.field->origin);
       for (int d = 0; d < 2; ++d) {
@@ -49,6 +51,7 @@ void applyVelocityConditions(const StepSetup& setup, const Clock& clock, GridFie
           const double r = m * (vp[d] - vOld[d]) / dt - (grid.force[n][d] + grid.externalForce[n][d]);
           reaction[d] += r;
           work += dt * r * vp[d];
+          if (withLoads) work += dt * grid.externalForce[n][d] * (vp[d] - grid.velocity[n][d]);
         }
         grid.velocity[n][d] = vp[d];
         grid.velocityChange[n][d] = vp[d] - vOld[d];
@@ -73,15 +76,19 @@ void updateGrid(const StepSetup& setup, const Clock& clock, GridFields& grid, st
   const Scene& scene = setup.scene;
   const int nodes = scene.grid.nodeCount();
   const double dt = clock.dt, viscous = scene.solver.damping.viscous, local = scene.solver.damping.local;
-  totals.damping += orderedSum(setup.threads, nodes, 0.0, [&](long node) {
+  const bool withLoads = !scene.loads.empty() || scene.solver.gravity.squaredNorm() > 0.0;
+  // One pass over the nodes: the update, the damping forces' work and the loads' work (at the
+  // free velocities; applyVelocityConditions corrects the prescribed components).
+  const Vec2 work = orderedSum(setup.threads, nodes, Vec2(Vec2::Zero()), [&](long node) -> Vec2 {
     const auto n = static_cast<std::size_t>(node);
     const double m = grid.mass[n];
     if (!(m > 0.0)) {
       grid.velocity[n].setZero();
       grid.velocityChange[n].setZero();
-      return 0.0;
+      return Vec2::Zero();
     }
-    const Vec2 v = grid.momentum[n] / m;
+    const double invMass = 1.0 / m;  // one division per node, not three: the loop's cost
+    const Vec2 v = grid.momentum[n] * invMass;
     const Vec2 f = grid.force[n] + grid.externalForce[n];
     Vec2 fd = f;
     if (viscous > 0.0) fd -= viscous * m * v;
@@ -90,18 +97,14 @@ void updateGrid(const StepSetup& setup, const Clock& clock, GridFields& grid, st
       if (c & 1) fd[0] = f[0];
       if (c & 2) fd[1] = f[1];
     }
-    const Vec2 vNew = v + dt / m * fd;
+    const Vec2 vNew = v + (dt * invMass) * fd;
     grid.velocity[n] = vNew;
     grid.velocityChange[n] = vNew - v;
-    return dt * (f - fd).dot(vNew);  // work of the damping forces
+    return Vec2(dt * (f - fd).dot(vNew), withLoads ? dt * grid.externalForce[n].dot(vNew) : 0.0);
   });
-  applyVelocityConditions(setup, clock, grid, conditions, &totals);
-  if (!scene.loads.empty() || scene.solver.gravity.squaredNorm() > 0.0) {
-    const double work = orderedSum(setup.threads, nodes, 0.0, [&](long node) {
-      return grid.externalForce[static_cast<std::size_t>(node)].dot(grid.velocity[static_cast<std::size_t>(node)]);
-    });
-    totals.externalWork += dt * work;
-  }
+  totals.damping += work[0];
+  totals.externalWork += work[1];
+  applyVelocityConditions(setup, clock, grid, conditions, &totals, withLoads);
 }
 
 void gridVelocities(const StepSetup& setup, const Clock& clock, GridFields& grid,
@@ -111,9 +114,9 @@ void gridVelocities(const StepSetup& setup, const Clock& clock, GridFields& grid
   for (int node = 0; node < nodes; ++node) {
     const auto n = static_cast<std::size_t>(node);
     const double m = grid.mass[n];
-    grid.velocity[n] = m > 0.0 ? Vec2(grid.momentum[n] / m) : Vec2::Zero();
+    grid.velocity[n] = m > 0.0 ? Vec2(grid.momentum[n] * (1.0 / m)) : Vec2::Zero();
   }
-  applyVelocityConditions(setup, clock, grid, conditions, nullptr);
+  applyVelocityConditions(setup, clock, grid, conditions, nullptr, false);
 }
 
 void addLoads(const StepSetup& setup, double time, const Particles& particles, GridFields& grid,

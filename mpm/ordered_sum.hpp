@@ -10,7 +10,7 @@
 
 namespace ecm::mpm {
 
-inline constexpr long kSumChunk = 4096;
+inline constexpr long kSumChunk = 1024;  // a grid of 160 x 160 nodes is 25 chunks: two threads share them evenly
 
 // The sum of term(i) for i in [0, n) (term may also have side effects on element i).
 template <class T, class Term>
