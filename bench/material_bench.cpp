@@ -166,4 +166,35 @@ void BM_SmearedSoftening(benchmark::State& st) {
 }
 BENCHMARK(BM_SmearedSoftening);
 
+// Material::update over many points, as the Python module's update_many runs it (the same
+// update, without the tangent): arg kind 0 intact points (an increment and back, staying
+// elastic), 1 cracked points softening further. bench/python_update_bench.py times the same
+// from Python.
+void BM_MaterialUpdateMany(benchmark::State& st) {
+  MaterialParams p;
+  p.model = ModelKind::Enriched;
+  p.elastic = {32000.0, 0.2, Hypothesis::PlaneStress};
+  p.tensileStrength = 3.0;
+  p.softeningModulus = 8.184;
+  p.softeningExponent = 0.128;
+  p.bandWidth = 0.05;
+  const Material m(p);
+  const bool cracked = st.range(0) != 0;
+  const auto size = EffectiveSize::fixed(2.5);
+  std::vector<MaterialPoint> points(cracked ? 10000 : 100000);
+  for (MaterialPoint& q : points)
+    for (int i = 0; cracked && i < 40; ++i) m.update(q, Voigt(5e-6, -1e-6, 1e-6), size);
+  const UpdateOptions options{SnapBackPolicy::Stop, false};
+  double sign = 1.0;
+  for (auto _ : st) {
+    const Voigt d = cracked ? kStep : Voigt(sign * kStep);
+    sign = -sign;
+    for (MaterialPoint& q : points) {
+      const UpdateResult r = m.update(q, d, size, options);
+      benchmark::DoNotOptimize(r.stress);
+    }
+  }
+  st.SetItemsProcessed(st.iterations() * static_cast<long>(points.size()));
+}
+BENCHMARK(BM_MaterialUpdateMany)->Arg(0)->Arg(1)->ArgName("cracked")->Unit(benchmark::kMillisecond);
 }  // namespace

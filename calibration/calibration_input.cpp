@@ -6,6 +6,7 @@
 
 #include "calibration/calibration_error.hpp"
 #include "calibration/fracture_energy.hpp"
+#include "calibration/target_csv.hpp"
 
 namespace ecm::calibration {
 
@@ -36,8 +37,9 @@ const std::vector<Quantity>& quantities() {
   return q;
 }
 
-CalibrationInput readCalibrationInput(const std::filesystem::path& path) {
-  const io::YamlMap m = io::loadYamlFile(path);
+CalibrationInput readCalibrationInput(const std::filesystem::path& path) { return readCalibrationInput(io::loadYamlFile(path)); }
+
+CalibrationInput readCalibrationInput(const io::YamlMap& m) {
   CalibrationInput in;
   for (const Quantity& q : quantities()) {
     if (!m.has(q.key)) continue;
@@ -76,6 +78,7 @@ void overlay(CalibrationInput& base, const CalibrationInput& top) {
   };
   take(base.fit, top.fit, "fit");
   take(base.fitCsv, top.fitCsv, "fit_csv");
+  take(base.fitPoints, top.fitPoints, "fit_points");
   take(base.out, top.out, "out");
   take(base.writeMaterial, top.writeMaterial, "write_material");
   take(base.name, top.name, "name");
@@ -147,8 +150,9 @@ class Checker {
 CalibrationPlan planCalibration(const CalibrationInput& in) {
   const Checker c(in);
   CalibrationPlan p;
-  const bool fitting = in.fit || in.fitCsv;
-  if (in.fit && in.fitCsv) throw CalibrationError("give either --fit hordijk or --fit-csv FILE, not both");
+  const bool fitting = in.fit || in.fitCsv || in.fitPoints;
+  if ((in.fit ? 1 : 0) + (in.fitCsv ? 1 : 0) + (in.fitPoints ? 1 : 0) > 1)
+    throw CalibrationError("give either --fit hordijk or --fit-csv FILE, not both");
   if (c.given("smeared_element_size")) {
     p.mode = CalibrationMode::CrackBand;
   } else if (fitting) {
@@ -204,6 +208,9 @@ CalibrationPlan planCalibration(const CalibrationInput& in) {
     p.target = hordijkCurve(p.law.tensileStrength, p.fractureEnergy);
   } else if (in.fitCsv) {
     p.target = readTargetCsv(*in.fitCsv);
+  } else if (in.fitPoints) {
+    validateTarget(*in.fitPoints);
+    p.target = in.fitPoints;
   }
 
   if (in.out) p.out = *in.out;

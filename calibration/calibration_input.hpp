@@ -40,6 +40,7 @@ struct CalibrationInput {
       softeningModulus, smearedSize, density;
   std::optional<std::string> fit;  // "hordijk"
   std::optional<std::filesystem::path> fitCsv, out, writeMaterial;
+  std::optional<TargetCurve> fitPoints;  // measured points given in code (the Python module), as fit_csv
   std::optional<std::string> name, hypothesis;
   // Where values read from a YAML file came from: key -> (file, line), for messages.
   std::map<std::string, std::pair<std::string, int>> origin;
@@ -60,6 +61,7 @@ const std::vector<Quantity>& quantities();
 // Reads the YAML input (validated with the io reader: unknown keys, types; ranges are checked by
 // planCalibration with FILE:LINE of the offending key).
 CalibrationInput readCalibrationInput(const std::filesystem::path& path);
+CalibrationInput readCalibrationInput(const io::YamlMap& map);
 // Values set in `top` replace those of `base` (command line over input file).
 void overlay(CalibrationInput& base, const CalibrationInput& top);
 

@@ -4,8 +4,6 @@
 #include <sstream>
 
 #include "calibration/calibration_error.hpp"
-#include "io/csv_reader.hpp"
-#include "io/yaml_input.hpp"
 
 namespace ecm::calibration {
 
@@ -48,27 +46,6 @@ std::string hordijkGnuplot(double ft, double gf) {
   const std::string r = "(x/" + str(hordijkCriticalOpening(ft, gf)) + ")";
   return "(x < " + str(hordijkCriticalOpening(ft, gf)) + " ? " + str(ft) + "*((1+(3*" + r + ")**3)*exp(-6.93*" + r +
          ") - " + r + "*28*exp(-6.93)) : 0)";
-}
-
-TargetCurve readTargetCsv(const std::filesystem::path& path) {
-  const io::CsvTable table = io::readCsv(path, 2);
-  const std::string file = path.string();
-  TargetCurve t;
-  t.source = file;
-  for (std::size_t i = 0; i < table.rows.size(); ++i) {
-    const double w = table.rows[i][0], sigma = table.rows[i][1];
-    if (w < 0.0) throw io::InputError(file, table.lines[i], "opening w = " + str(w) + " mm is negative (must be >= 0)");
-    if (i > 0 && !(w > t.opening.back()))
-      throw io::InputError(file, table.lines[i], "openings must increase strictly: w = " + str(w) + " mm after w = " +
-                                                     str(t.opening.back()) + " mm");
-    t.opening.push_back(w);
-    t.stress.push_back(sigma);
-  }
-  if (t.opening.size() < kMinimumPoints)
-    throw io::InputError(file, table.lines.empty() ? 1 : table.lines.back(),
-                         std::to_string(t.opening.size()) + " data point(s) (w, sigma); at least " +
-                             std::to_string(kMinimumPoints) + " are needed");
-  return t;
 }
 
 void validateTarget(const TargetCurve& t) {

@@ -1,7 +1,6 @@
 #pragma once
 // Target softening curves (w, sigma) for the fit: the Hordijk curve (Cornelissen, Hordijk and
-// Reinhardt 1986) or measured points from a CSV file.
-#include <filesystem>
+// Reinhardt 1986) or measured points (read from a CSV file by calibration/target_csv.hpp).
 #include <string>
 #include <vector>
 
@@ -22,9 +21,6 @@ TargetCurve hordijkCurve(double tensileStrength, double fractureEnergy, int coun
 // The gnuplot expression of the Hordijk curve in x = w, for plots.
 std::string hordijkGnuplot(double tensileStrength, double fractureEnergy);
 
-// Measured (w, sigma) points: exactly two columns, at least 3 rows, w >= 0 strictly increasing.
-// Violations are io::InputError "FILE:LINE: reason" naming the value and the bound.
-TargetCurve readTargetCsv(const std::filesystem::path& path);
 // The same checks for a curve built in code (CalibrationError).
 void validateTarget(const TargetCurve& target);
 

@@ -15,15 +15,16 @@ double normalTraction(const HistoryRow& r) {
   return n[0] * n[0] * r.stress[0] + n[1] * n[1] * r.stress[1] + 2.0 * n[0] * n[1] * r.stress[2];
 }
 
-void writeHistoryCsv(const PointRun& run, const std::filesystem::path& file, bool secondBandColumns) {
-  std::vector<std::string> columns{"increment", "segment", "eps_xx", "eps_yy", "gamma_xy", "sig_xx", "sig_yy", "sig_xy",
-                                   "damage", "integrity", "jump_n", "jump_t", "opening", "traction_n", "normal_x", "normal_y",
-                                   "volume_fraction", "work", "dissipation", "iterations", "substeps", "opening_control",
-                                   "snapback_release", "event"};
+HistoryTable historyTable(const PointRun& run, bool secondBandColumns) {
+  HistoryTable t;
+  t.columns = {"increment", "segment", "eps_xx", "eps_yy", "gamma_xy", "sig_xx", "sig_yy", "sig_xy",
+               "damage", "integrity", "jump_n", "jump_t", "opening", "traction_n", "normal_x", "normal_y",
+               "volume_fraction", "work", "dissipation", "iterations", "substeps", "opening_control",
+               "snapback_release", "event"};
   // With second_band: orthogonal, the second band (zeros until it opens).
   if (secondBandColumns)
-    for (const char* c : {"damage_2", "jump_n_2", "jump_t_2", "normal_x_2", "normal_y_2"}) columns.emplace_back(c);
-  io::CsvWriter csv(file, columns);
+    for (const char* c : {"damage_2", "jump_n_2", "jump_t_2", "normal_x_2", "normal_y_2"}) t.columns.emplace_back(c);
+  t.rows.reserve(run.history.size());
   for (const HistoryRow& r : run.history) {
     std::vector<double> row{double(r.increment), double(r.segment), r.strain[0], r.strain[1], r.strain[2], r.stress[0],
                             r.stress[1], r.stress[2], r.damage, r.integrity, r.normalJump, r.slidingJump, r.opening,
@@ -32,8 +33,15 @@ void writeHistoryCsv(const PointRun& run, const std::filesystem::path& file, boo
                             r.snapBackRelease ? 1.0 : 0.0, double(r.event)};
     if (secondBandColumns)
       row.insert(row.end(), {r.secondDamage, r.secondNormalJump, r.secondSlidingJump, r.secondNormal[0], r.secondNormal[1]});
-    csv.row(row);
+    t.rows.push_back(std::move(row));
   }
+  return t;
+}
+
+void writeHistoryCsv(const PointRun& run, const std::filesystem::path& file, bool secondBandColumns) {
+  const HistoryTable t = historyTable(run, secondBandColumns);
+  io::CsvWriter csv(file, t.columns);
+  for (const std::vector<double>& row : t.rows) csv.row(row);
   csv.close();
 }
 

@@ -2,6 +2,8 @@
 // What a point run leaves in its output folder: history.csv (every increment), summary.json
 // and the plots stress_strain.png and traction_opening.png.
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -9,6 +11,13 @@
 
 namespace ecm::driver {
 
+// The columns of history.csv and one row of numbers per history row (what the CSV holds, and
+// what the Python module returns as arrays).
+struct HistoryTable {
+  std::vector<std::string> columns;
+  std::vector<std::vector<double>> rows;
+};
+HistoryTable historyTable(const PointRun& run, bool secondBandColumns = false);
 void writeHistoryCsv(const PointRun& run, const std::filesystem::path& file, bool secondBandColumns = false);
 nlohmann::json pointSummaryJson(const PointScene& scene, const PointRun& run);
 void writePointPlots(const PointScene& scene, const std::filesystem::path& dir);

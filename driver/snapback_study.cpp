@@ -78,8 +78,9 @@ double snapBackSize(const MaterialParams& m) {
 
 }  // namespace
 
-SnapBackStudy loadSnapBackStudy(const std::filesystem::path& file) {
-  const io::YamlMap map = io::loadYamlFile(file);
+SnapBackStudy loadSnapBackStudy(const std::filesystem::path& file) { return readSnapBackStudy(io::loadYamlFile(file)); }
+
+SnapBackStudy readSnapBackStudy(const io::YamlMap& map) {
   SnapBackStudy s;
   s.name = map.getOr<std::string>("name", "snapback-study");
   s.material = io::readMaterial(map.child("material"));

@@ -12,6 +12,10 @@
 
 #include "driver/point_driver.hpp"
 
+namespace ecm::io {
+class YamlMap;
+}
+
 namespace ecm::driver {
 
 struct SnapBackStudy {
@@ -57,6 +61,8 @@ struct SnapBackStudyResult {
 };
 
 SnapBackStudy loadSnapBackStudy(const std::filesystem::path& file);
+// The same from a map already parsed (the Python module's dicts).
+SnapBackStudy readSnapBackStudy(const io::YamlMap& map);
 SnapBackStudyResult runSnapBackStudy(const SnapBackStudy& study, const std::filesystem::path& dir, std::ostream& table);
 
 }  // namespace ecm::driver

@@ -235,6 +235,7 @@ class Run {
       if (finished() || (scene_.outputInterval > 0.0 && solver_.time() >= nextOutput_ - 0.5 * solver_.timeStep())) {
         watchStop();
         output();
+        if (options_.onRow && !options_.onRow(solver_.time(), solver_.step())) rowObserverAsksStop_ = true;
         while (scene_.outputInterval > 0.0 && nextOutput_ <= solver_.time() + 0.5 * solver_.timeStep())
           nextOutput_ += scene_.outputInterval;  // (output_interval 0: the last step only)
       }
@@ -249,7 +250,7 @@ class Run {
     return result_.endedByStopWhen || solver_.time() >= scene_.endTime - 0.5 * solver_.timeStep();
   }
   bool stopRequested() const {
-    return (options_.stop && options_.stop->load(std::memory_order_relaxed)) ||
+    return rowObserverAsksStop_ || (options_.stop && options_.stop->load(std::memory_order_relaxed)) ||
            (options_.maxSteps > 0 && solver_.step() >= options_.maxSteps);
   }
   // The scene's stop_when (mpm/stop_when.hpp), at an output row, before it is written.
@@ -436,6 +437,7 @@ class Run {
   double nextOutput_ = scene_.outputInterval;
   std::size_t nextSnapshot_ = 0;
   bool outputFailed_ = false;
+  bool rowObserverAsksStop_ = false;  // RunOptions::onRow returned false
   // stop
   StopWatch watch_;
   std::size_t watched_ = 0;

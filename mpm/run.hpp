@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "mpm/scene.hpp"
@@ -27,6 +28,10 @@ struct RunOptions {
   long maxSteps = 0;             // > 0: stop with a checkpoint once the step count (from t = 0) reaches it
   const std::atomic<bool>* stop = nullptr;  // once set (a signal handler): stop with a checkpoint after the step
   std::string resumeCommand;     // how to resume, for summary.json (main: "ecm-mpm SCENE --restart DIR")
+  // Called after every history row is written (with the time reached, s, and the step count);
+  // returning false asks the run to stop with a checkpoint, as `stop` does (the Python module's
+  // progress callback).
+  std::function<bool(double time, long step)> onRow;
 };
 
 struct RunResult {

@@ -9,6 +9,7 @@
 #include "calibration/calibration_error.hpp"
 #include "calibration/fracture_energy.hpp"
 #include "calibration/softening_curve.hpp"
+#include "calibration/target_csv.hpp"
 #include "io/yaml_input.hpp"
 #include "../paper_constants.hpp"
 

@@ -1,5 +1,5 @@
 # The project's rooms and who may include whom (README, "Layout"):
-#   material <- io <- {driver, calibration, mpm} <- study
+#   material <- io <- {driver, calibration, mpm} <- {study, python}
 # Run as: cmake -DROOT=<source tree> -P include_map.cmake. Fails naming every file that includes
 # a folder it must not. bench/, tests/, fuzz/ and examples/ may include every folder and are not
 # checked.
@@ -9,7 +9,8 @@ set(allowed_driver driver io material)
 set(allowed_calibration calibration io material)
 set(allowed_mpm mpm io material)
 set(allowed_study study mpm driver io material)
-set(rooms material io driver calibration mpm study)
+set(allowed_python python mpm driver calibration io material)
+set(rooms material io driver calibration mpm study python)
 
 if(NOT DEFINED ROOT)
   message(FATAL_ERROR "usage: cmake -DROOT=<source tree> -P include_map.cmake")

@@ -1,0 +1,89 @@
+"""ecm: enriched constitutive models for quasi-brittle fracture, from Python.
+
+Units everywhere: mm, N, MPa, tonne, s (density in t/mm^3).
+
+    import ecm
+    concrete = ecm.Material.from_file("data/materials/den-concrete.yaml")
+    point = ecm.PointState()
+    result = concrete.update(point, [1e-4, 0, 0], H=10.0)      # point is updated in place
+    run = ecm.run_point("data/point/uniaxial-tension-H10.yaml")  # run.history["sig_xx"], run.summary
+    ecm.calibrate(youngs_modulus=32000, tensile_strength=3, fracture_energy=0.11,
+                  band_width=0.05, softening_exponent=0.128)["Ep"]
+
+The compiled part is ecm._ecm (python/src/); what the tools read and write is documented in
+docs/inputs.md and docs/tools.md, and every function here reads the same inputs the same way.
+"""
+import os
+import tempfile
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._ecm import (STATUS, BandState, CalibrationError, CheckpointError, InputError, Material, OutputError,
+                   ParameterError, PointArray, PointState, UpdateResult, __version__, fracture_energy,
+                   softening_modulus)
+from . import _ecm
+from .mpm_output import MpmOutput, read_mpm_output
+
+__all__ = ["STATUS", "BandState", "CalibrationError", "CheckpointError", "InputError", "Material", "OutputError",
+           "ParameterError", "PointArray", "PointState", "UpdateResult", "__version__", "fracture_energy",
+           "softening_modulus", "PointRun", "run_point", "snapback_study", "calibrate", "fit_softening",
+           "run_scene", "MpmOutput", "read_mpm_output"]
+
+
+def _path_or_dict(x):
+    return os.fspath(x) if isinstance(x, os.PathLike) else x
+
+
+@dataclass
+class PointRun:
+    """A point run: history (column of history.csv -> array, one entry per row) and summary
+    (the content of summary.json)."""
+    history: dict = field(default_factory=dict)
+    summary: dict = field(default_factory=dict)
+
+
+def run_point(scene, out=None):
+    """Runs a point scene (a YAML file's path, or a dict with the same keys) as ecm-point does.
+    With `out`, also writes ecm-point's output folder there."""
+    columns, rows, summary = _ecm._run_point(_path_or_dict(scene), None if out is None else os.fspath(out))
+    return PointRun({c: rows[:, i].copy() for i, c in enumerate(columns)}, summary)
+
+
+def snapback_study(study, out=None):
+    """The snap-back study over effective sizes (ecm-point --study): a YAML file's path or a dict.
+    Returns {"rows": {column: array over H}, "snapback_size", "critical_size", ...}; the study's
+    files go to `out` (a temporary folder if None)."""
+    if out is None:
+        with tempfile.TemporaryDirectory(prefix="ecm-study-") as tmp:
+            return _ecm._snapback_study(_path_or_dict(study), os.path.join(tmp, "study"))
+    return _ecm._snapback_study(_path_or_dict(study), os.fspath(out))
+
+
+def calibrate(file=None, out=None, **keys):
+    """ecm-calibrate: the keys of a calibration input file as keywords (youngs_modulus,
+    tensile_strength, fracture_energy, band_width, softening_exponent, softening_modulus,
+    smeared_element_size, fit="hordijk", fit_csv=...), and/or the file itself (keywords win).
+    Returns the summary (summary.json's content); with `out`, writes the tool's files there."""
+    return _ecm._calibrate(None if file is None else os.fspath(file), keys, None, None,
+                           None if out is None else os.fspath(out))
+
+
+def fit_softening(w, traction, out=None, **keys):
+    """Fits (E_p, n) to measured points (w in mm, traction in MPa) while dissipating exactly G_F,
+    as ecm-calibrate --fit-csv does with the same points. keys: youngs_modulus, tensile_strength,
+    fracture_energy, band_width. Returns the summary ("n", "Ep", "fit_residual", ...)."""
+    w = np.asarray(w, dtype=float).ravel().tolist()
+    traction = np.asarray(traction, dtype=float).ravel().tolist()
+    return _ecm._calibrate(None, keys, w, traction, None if out is None else os.fspath(out))
+
+
+def run_scene(scene, out, threads=0, preset=None, snapshots=True, plot=True, restart=False, max_steps=0,
+              progress=None):
+    """Runs an ecm-mpm scene (a YAML file's path or a dict) into the folder `out`, as ecm-mpm does.
+    progress(time, end_time, step) is called at every history row; returning False (or raising,
+    or Ctrl-C) stops the run with a checkpoint (resume with restart=True). The GIL is released
+    while the run goes on. Returns a dict: completed, stopped, error, steps, particles,
+    peak_load_N, wall_time_s, checkpoint; read the folder with read_mpm_output(out)."""
+    return _ecm._run_scene(_path_or_dict(scene), os.fspath(out), threads, preset, snapshots, plot, restart, max_steps,
+                           progress)

@@ -1,0 +1,44 @@
+// The library's exceptions as Python exceptions, with the same message the command-line tools
+// print after "error: " (for input: "FILE:LINE: reason").
+#include "calibration/calibration_error.hpp"
+#include "io/output_error.hpp"
+#include "io/value_error.hpp"
+#include "io/yaml_input.hpp"
+#include "material/parameter_check.hpp"
+#include "material/smeared_crack.hpp"
+#include "mpm/checkpoint.hpp"
+#include "python/src/bindings.hpp"
+
+namespace ecm::python {
+
+void bindErrors(py::module_& m) {
+  // Bad input of any kind is a ValueError: a file's key or value (InputError, "FILE:LINE: reason"),
+  // a value out of range given in code (ParameterError, io::ValueError), a calibration that
+  // cannot be made (CalibrationError, RegularisationError).
+  static py::exception<io::InputError> inputError(m, "InputError", PyExc_ValueError);
+  static py::exception<ParameterError> parameterError(m, "ParameterError", PyExc_ValueError);
+  static py::exception<calibration::CalibrationError> calibrationError(m, "CalibrationError", PyExc_ValueError);
+  static py::exception<io::OutputError> outputError(m, "OutputError", PyExc_OSError);
+  static py::exception<mpm::CheckpointError> checkpointError(m, "CheckpointError", PyExc_RuntimeError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const io::InputError& e) {
+      inputError(e.what());
+    } catch (const io::ValueError& e) {
+      inputError(e.what());
+    } catch (const ParameterError& e) {
+      parameterError(e.what());
+    } catch (const RegularisationError& e) {
+      calibrationError(e.what());
+    } catch (const calibration::CalibrationError& e) {
+      calibrationError(e.what());
+    } catch (const io::OutputError& e) {
+      outputError(e.what());
+    } catch (const mpm::CheckpointError& e) {
+      checkpointError(e.what());
+    }
+  });
+}
+
+}  // namespace ecm::python

@@ -1,0 +1,72 @@
+"""Calibration from Python against ecm-calibrate: the same summary bit for bit, the same
+messages, and the calibration's own identities (E_p for G_F and G_F for E_p are inverses; a
+curve drawn from the law is fitted back to its own n and E_p)."""
+import json
+
+import numpy as np
+import pytest
+
+import ecm
+from conftest import run_tool
+
+PAPER = dict(youngs_modulus=32000, tensile_strength=3.0, fracture_energy=0.11, band_width=0.05)
+
+
+def test_calibrate_gives_the_command_line_summary_bit_for_bit(tmp_path):
+    status, err = run_tool("ecm-calibrate", "--E", 32000, "--ft", 3.0, "--GF", 0.11, "--h", 0.05, "--n", 0.128,
+                           "--out", tmp_path / "cli")
+    assert status == 0, err
+    summary = ecm.calibrate(softening_exponent=0.128, out=tmp_path / "py", **PAPER)
+    with open(tmp_path / "cli/summary.json") as f:
+        assert summary == json.load(f)
+    assert (tmp_path / "py/softening.csv").read_bytes() == (tmp_path / "cli/softening.csv").read_bytes()
+
+
+def test_softening_modulus_and_fracture_energy_are_inverse():
+    ep = ecm.softening_modulus(E=32000, ft=3.0, n=0.128, GF=0.11, h=0.05)
+    # the paper's concrete: E_p = 8.184 MPa, which gives G_F = 0.11 N/mm to the paper's rounding (0.03 %)
+    assert ep == pytest.approx(8.184, rel=1e-3)
+    assert ecm.fracture_energy(E=32000, ft=3.0, Ep=ep, n=0.128, h=0.05) == pytest.approx(0.11, rel=1e-9)
+
+
+def test_a_curve_drawn_from_the_law_fits_back_to_its_parameters(tmp_path):
+    # The band's own traction-opening curve (softening.csv of the calibration at n = 0.2) is fitted
+    # with G_F held: the fit must find n = 0.2 and its E_p again.
+    truth = ecm.calibrate(softening_exponent=0.2, out=tmp_path / "truth", **PAPER)
+    data = np.loadtxt(tmp_path / "truth/softening.csv", delimiter=",", skiprows=1, ndmin=2)
+    with open(tmp_path / "truth/softening.csv") as f:
+        header = f.readline().strip().split(",")
+    w, t = data[:, header.index("w")], data[:, header.index("sigma")]
+    keep = np.concatenate(([True], np.diff(w) > 0)) & (w > 0)
+    w, t = w[keep][::10], t[keep][::10]
+    fit = ecm.fit_softening(w, t, **PAPER)
+    assert fit["n"] == pytest.approx(0.2, rel=1e-3)
+    assert fit["Ep"] == pytest.approx(truth["Ep"], rel=1e-3)
+    # the same points through a CSV file and the command line give the same numbers
+    csv = tmp_path / "points.csv"
+    np.savetxt(csv, np.column_stack([w, t]), delimiter=",", header="w_mm,sigma_MPa", comments="", fmt="%.17g")
+    status, err = run_tool("ecm-calibrate", "--E", 32000, "--ft", 3.0, "--GF", 0.11, "--h", 0.05, "--fit-csv", csv,
+                           "--out", tmp_path / "cli")
+    assert status == 0, err
+    with open(tmp_path / "cli/summary.json") as f:
+        cli = json.load(f)
+    for key in ("n", "Ep", "GF", "fit_residual", "fit_points"):
+        assert cli[key] == fit[key], key
+
+
+def test_bad_input_raises_the_message_the_tool_prints(tmp_path):
+    status, err = run_tool("ecm-calibrate", "--E", 32000, "--ft", 3.0, "--GF", 1e-6, "--h", 0.05, "--n", 0.128,
+                           "--out", tmp_path / "cli")
+    assert status == 2
+    with pytest.raises(ValueError) as raised:
+        ecm.calibrate(youngs_modulus=32000, tensile_strength=3.0, fracture_energy=1e-6, band_width=0.05,
+                      softening_exponent=0.128)
+    assert "below the elastic minimum" in str(raised.value)
+    bad = tmp_path / "cal.yaml"
+    bad.write_text("youngs_modulus: 32000\ntensile_strength: -3\nfracture_energy: 0.11\nband_width: 0.05\n"
+                   "softening_exponent: 0.128\n")
+    status, err = run_tool("ecm-calibrate", "--input", bad, "--out", tmp_path / "cli2")
+    assert status == 2
+    with pytest.raises(ecm.InputError) as raised:
+        ecm.calibrate(bad)
+    assert str(raised.value) in err and str(raised.value).startswith(f"{bad}:2:")

@@ -1,0 +1,77 @@
+"""ecm-mpm runs from Python: the tool's folder bit for bit, the progress callback, stopping and
+resuming through it (bitwise the uninterrupted run), the GIL released while the run goes on, and
+bad input with the tool's message. The scene is the elastic bar (data/mpm/elastic-bar.yaml), a
+fraction of a second per run."""
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import ecm
+from conftest import run_tool
+
+
+def test_a_run_writes_the_folder_the_tool_writes(source, tmp_path):
+    scene = source / "data/mpm/elastic-bar.yaml"
+    status, err = run_tool("ecm-mpm", scene, "-o", tmp_path / "cli", "--no-vtu", "--no-plot", "-q", "-t", 1)
+    assert status == 0, err
+    rows = []
+    result = ecm.run_scene(scene, tmp_path / "py", threads=1, snapshots=False, plot=False,
+                           progress=lambda t, end, step: rows.append((t, end, step)))
+    assert result["completed"] and not result["error"]
+    assert (tmp_path / "py/history.csv").read_bytes() == (tmp_path / "cli/history.csv").read_bytes()
+    assert (tmp_path / "py/particles_final.csv").read_bytes() == (tmp_path / "cli/particles_final.csv").read_bytes()
+    out = ecm.read_mpm_output(tmp_path / "py")
+    assert len(rows) == len(out.history["step"]) - 1  # every row but the one at t = 0
+    assert rows[-1][2] == result["steps"] == out.summary["steps"]
+    assert np.array_equal(out.history["step"][1:], [r[2] for r in rows])
+    assert out.particles["x_mm"].shape == (result["particles"],)
+
+
+def test_a_callback_that_returns_false_stops_with_a_checkpoint_and_the_run_resumes_bitwise(source, tmp_path):
+    scene = source / "data/mpm/elastic-bar.yaml"
+    ecm.run_scene(scene, tmp_path / "whole", threads=1, snapshots=False, plot=False)
+    stopped = ecm.run_scene(scene, tmp_path / "parts", threads=1, snapshots=False, plot=False,
+                            progress=lambda t, end, step: t < 0.4 * end)
+    assert stopped["stopped"] and stopped["checkpoint"]
+    resumed = ecm.run_scene(scene, tmp_path / "parts", threads=2, snapshots=False, plot=False, restart=True)
+    assert resumed["completed"]
+    assert (tmp_path / "parts/history.csv").read_bytes() == (tmp_path / "whole/history.csv").read_bytes()
+
+
+def test_an_exception_in_the_callback_stops_the_run_and_is_raised(source, tmp_path):
+    def boom(t, end, step):
+        raise KeyError("from the callback")
+    with pytest.raises(KeyError, match="from the callback"):
+        ecm.run_scene(source / "data/mpm/elastic-bar.yaml", tmp_path / "out", threads=1, snapshots=False, plot=False,
+                      progress=boom)
+    assert (tmp_path / "out/checkpoint.bin").exists()
+
+
+def test_the_gil_is_released_while_a_run_goes_on(source, tmp_path):
+    done = threading.Event()
+    ticks = 0
+
+    def run():
+        ecm.run_scene(source / "data/mpm/elastic-bar.yaml", tmp_path / "out", threads=1, snapshots=False, plot=False)
+        done.set()
+
+    worker = threading.Thread(target=run)
+    start = time.perf_counter()
+    worker.start()
+    while not done.is_set():  # Python keeps running beside the run: it holds no GIL
+        ticks += 1
+    worker.join()
+    assert time.perf_counter() - start > 0.05 and ticks > 1000
+
+
+def test_bad_input_raises_the_message_the_tool_prints(source, tmp_path):
+    bad = tmp_path / "bad.yaml"
+    text = (source / "data/mpm/elastic-bar.yaml").read_text().replace("cfl: 0.3", "cfl: 3.0")
+    bad.write_text(text)
+    status, err = run_tool("ecm-mpm", bad, "-o", tmp_path / "cli", "-q")
+    assert status == 2
+    with pytest.raises(ecm.InputError) as raised:
+        ecm.run_scene(bad, tmp_path / "py")
+    assert str(raised.value) in err and "cfl" in str(raised.value)
