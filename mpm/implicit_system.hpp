@@ -1,0 +1,67 @@
+#pragma once
+// The discrete quasi-static equilibrium of one implicit load step (docs/implicit.md): the grid
+// is a finite-element mesh for the step, the particles its integration points. With the nodal
+// displacement increments du (two per node, x and y), a particle's strain increment is
+// d eps_p = B_p du (small strain, engineering shear), its stress and consistent tangent D_p come
+// from Material::update on a copy of its committed state, and
+//   internal force  f_int = sum_p V_p B_p^T sigma_p
+//   tangent         K     = sum_p V_p B_p^T D_p B_p   (over the unknown components only)
+// The stencils are those of the step's start (the particles move when the step is committed).
+// Sums go particle by particle in index order: the same bits on any number of threads.
+#include <Eigen/Sparse>
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "mpm/state.hpp"
+
+namespace ecm::mpm {
+
+// The components of the nodes some particle's stencil reaches, numbered: a node component is an
+// unknown (>= 0), prescribed (kPrescribed) or outside the body (kInactive).
+struct DofMap {
+  static constexpr std::int32_t kInactive = -1, kPrescribed = -2;
+  std::vector<std::int32_t> unknownOf;  // per node component 2 n + d
+  std::vector<std::int32_t> component;  // per unknown: its node component 2 n + d
+  int unknowns() const { return static_cast<int>(component.size()); }
+};
+
+// The step's fixed geometry: the particles' stencils at its start, the unknowns, and the sparse
+// pattern of K with, per particle, where each entry of its element matrix goes in K's values.
+struct StepGeometry {
+  std::vector<Stencil> stencils;            // per particle
+  DofMap dofs;
+  Eigen::SparseMatrix<double> pattern;      // K's pattern (column major, compressed), values 0
+  int stencilNodes = 4;                     // S x S nodes per stencil
+  std::vector<std::int32_t> entryOf;        // per particle, (2 S^2)^2 positions in pattern's values (-1: not an unknown pair)
+};
+
+// Locates every particle's stencil (false if one left the grid: `outside` names it) and
+// numbers the unknowns: components of reached nodes, minus those `prescribed` (2 n + d -> true).
+bool stepGeometry(const StepSetup& setup, const Particles& particles, const std::vector<std::uint8_t>& prescribed,
+                  StepGeometry& geometry, std::size_t& outside);
+
+// The particles' states at the end of the step for a trial du, not committed.
+struct Trial {
+  std::vector<Voigt> strain, stress;              // per particle
+  std::vector<double> integrity;                  // smeared crack (empty otherwise)
+  std::vector<std::optional<BandState>> band, secondBand;  // per particle: its bands after the step
+  std::vector<double> dissipation;                // per particle, per unit volume (MPa)
+  Eigen::VectorXd internalForce;                  // per node component (N)
+  Eigen::SparseMatrix<double> tangent;            // over the unknowns (when asked)
+  Eigen::VectorXd tangentTimesDirection;          // sum_p V B^T D B direction, per node component (when asked)
+  long released = 0;                              // snap-backs released (UpdateOptions::snapBack)
+  std::size_t failed = SIZE_MAX;                  // first particle whose update failed
+  UpdateResult failure;                           // its result
+};
+
+// The trial of du (per node component), with the tangent when `withTangent`. Each point's update
+// starts from its committed state; a failed update leaves `failed` set and the rest undefined.
+// With `direction` (per node component; the tangent is then computed too), also the tangent's
+// product with it over all components: the predictor's load from the prescribed increments.
+void evaluateTrial(const StepSetup& setup, const Particles& particles, const StepGeometry& geometry,
+                   const Eigen::VectorXd& du, bool withTangent, SnapBackPolicy snapBack, Trial& trial,
+                   const Eigen::VectorXd* direction = nullptr);
+
+}  // namespace ecm::mpm
