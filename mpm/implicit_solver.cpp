@@ -3,6 +3,7 @@
 
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -33,6 +34,8 @@ struct ImplicitSolver::Attempt {
   std::vector<std::uint8_t> prescribed;  // per node component
   Eigen::VectorXd du;                    // per node component (mm)
   Eigen::VectorXd external;              // loads and gravity at the step's end, per node component (N)
+  Eigen::VectorXd direction;             // indirect control: the driven components' reference (mm per unit load factor)
+  double dLambda = 0.0;                  // indirect control: the load factor's increment
   Trial trial;                           // at du
   ImplicitStepReport report;
   SnapBackPolicy snapBack = SnapBackPolicy::Stop;
@@ -59,23 +62,31 @@ Energies ImplicitSolver::energies() const {
   return {0.0, strain, totals_.externalWork, totals_.dissipated, 0.0};
 }
 
-bool ImplicitSolver::attempt(double dt, Attempt& a) {
+bool ImplicitSolver::prepare(double dt, const IndirectControl* control, Attempt& a) {
   const Scene& scene = setup_.scene;
   const Grid& grid = scene.grid;
   const double t0 = time_, t1 = time_ + dt;
   const auto components = static_cast<Eigen::Index>(2 * grid.nodeCount());
   // The prescribed components and their increments.
+  // (Under indirect control the driven conditions' components follow the load factor instead:
+  // their direction is the reference, their increment found by the step.)
   a.prescribed.assign(static_cast<std::size_t>(components), 0);
   a.du.setZero(components);
+  a.direction.setZero(components);
   for (std::size_t c = 0; c < scene.conditions.size(); ++c) {
     const NodeCondition& cond = scene.conditions[c];
+    const bool driven = control && std::find(control->driven.begin(), control->driven.end(), c) != control->driven.end();
     for (const std::int32_t node : conditions_[c].nodes) {
       Vec2 du(prescribedIncrement(cond.component[0], t0, dt), prescribedIncrement(cond.component[1], t0, dt));
       if (cond.field) du = dt * cond.field->scale(t1) * cond.field->gradient * (grid.nodePosition(node) - cond.field->origin);
       for (int d = 0; d < 2; ++d) {
         if (std::isnan(du[d])) continue;
         a.prescribed[2 * static_cast<std::size_t>(node) + static_cast<std::size_t>(d)] = 1;
-        a.du[2 * node + d] = du[d];
+        const bool follows = driven && !cond.field && cond.component[static_cast<std::size_t>(d)].kind != Prescribed::Fixed;
+        if (follows)
+          a.direction[2 * node + d] = control->reference[d];
+        else
+          a.du[2 * node + d] = du[d];
       }
     }
   }
@@ -107,6 +118,12 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
         spread(a.geometry.stencils[static_cast<std::size_t>(m)], each);
     }
   }
+  return true;
+}
+
+bool ImplicitSolver::attempt(double dt, Attempt& a) {
+  if (!prepare(dt, nullptr, a)) return false;
+  const auto components = a.du.size();
   // Newton on the unknowns.
   const DofMap& dofs = a.geometry.dofs;
   const int n = dofs.unknowns();
@@ -217,6 +234,86 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
   }
 }
 
+bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau, Attempt& a) {
+  if (!prepare(0.0, &control, a)) return false;
+  const auto components = a.du.size();
+  const DofMap& dofs = a.geometry.dofs;
+  const int n = dofs.unknowns();
+  // The control's coefficients per node component.
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(components);
+  for (const auto& [k, coefficient] : control.terms) c[k] += coefficient;
+  const double cPrescribed = c.dot(a.direction);  // d tau per unit load factor through the driven components
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+  bool analysed = false;
+  double dLambda = 0.0;
+  // Newton on (du_f, d lambda) with the bordered system, from du = 0 (the first iteration is the
+  // predictor): K_ff d_f + (K u^)_f d_lambda = r_f and c . (d_f + d_lambda u^) = d tau - c . du,
+  // solved with one factorisation: d_f = a + d_lambda b, a = K_ff^-1 r_f, b = -K_ff^-1 (K u^)_f.
+  for (int it = 0;; ++it) {
+    Trial& t = a.trial;
+    const Eigen::VectorXd du = a.du + dLambda * a.direction;
+    evaluateTrial(setup_, particles_, a.geometry, du, true, a.snapBack, t, &a.direction);
+    a.report.totalIterations++;
+    if (t.failed != SIZE_MAX) {
+      a.failedIteration = it;
+      a.failedParticle = t.failed;
+      a.why = setup_.materials[particles_.material[t.failed]].explain(t.failure);
+      return false;
+    }
+    Eigen::VectorXd r(n), ku(n);
+    for (int u = 0; u < n; ++u) {
+      const auto k = dofs.component[static_cast<std::size_t>(u)];
+      r[u] = a.external[k] - t.internalForce[k];
+      ku[u] = t.tangentTimesDirection[k];
+    }
+    const double reference = std::max({a.external.norm(), t.internalForce.norm(), 1e-300});
+    const double relative = r.norm() / reference, g = dTau - c.dot(du);
+    if (it > 0 && relative <= options_.tolerance && std::abs(g) <= 1e-10 * std::abs(dTau)) {
+      a.report.iterations = it;
+      a.report.residual = relative;
+      a.du = du;
+      a.dLambda = dLambda;
+      return true;
+    }
+    if (it >= options_.maxIterations) {
+      a.failedIteration = it;
+      a.failedResidual = relative;
+      a.why = "Newton did not converge";
+      return false;
+    }
+    const double start = omp_get_wtime();
+    if (!analysed) {
+      lu.analyzePattern(t.tangent);
+      analysed = true;
+    }
+    lu.factorize(t.tangent);
+    Eigen::VectorXd x, y;
+    if (lu.info() == Eigen::Success) x = lu.solve(r), y = -lu.solve(ku);
+    a.report.linearSolveSeconds += omp_get_wtime() - start;
+    if (lu.info() != Eigen::Success || !x.allFinite() || !y.allFinite()) {
+      a.failedIteration = it;
+      a.failedResidual = relative;
+      a.why = "the tangent is singular";
+      return false;
+    }
+    double cx = 0.0, cy = 0.0;
+    for (int u = 0; u < n; ++u) {
+      const double ck = c[dofs.component[static_cast<std::size_t>(u)]];
+      cx += ck * x[u], cy += ck * y[u];
+    }
+    const double denominator = cy + cPrescribed;
+    if (!(std::abs(denominator) > 0.0)) {
+      a.failedIteration = it;
+      a.failedResidual = relative;
+      a.why = "the control does not see the driven conditions (c . du does not change with the load factor)";
+      return false;
+    }
+    const double deltaLambda = (g - cx) / denominator;
+    for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] += x[u] + deltaLambda * y[u];
+    dLambda += deltaLambda;
+  }
+}
+
 void ImplicitSolver::commit(const Attempt& a, double dt) {
   const Scene& scene = setup_.scene;
   const Trial& t = a.trial;
@@ -261,6 +358,10 @@ void ImplicitSolver::commit(const Attempt& a, double dt) {
     for (int d = 0; d < 2; ++d) {
       const ComponentCondition& k = cond.component[static_cast<std::size_t>(d)];
       if (cond.field) continue;
+      if (!state.nodes.empty() && a.direction.size() > 0 && a.direction[2 * state.nodes[0] + d] != 0.0) {
+        state.displacement[d] += a.dLambda * a.direction[2 * state.nodes[0] + d];  // driven by the load factor
+        continue;
+      }
       if (k.kind == Prescribed::Displacement) state.displacement[d] = k.history(time_ + dt);
       if (k.kind == Prescribed::Velocity) state.displacement[d] += dt * k.history(time_ + dt);
     }
@@ -270,24 +371,25 @@ void ImplicitSolver::commit(const Attempt& a, double dt) {
   totals_.externalWork += 0.5 * (t.internalForce.dot(a.du) + (previousForce_.size() == t.internalForce.size() ? previousForce_.dot(a.du) : 0.0));
   previousForce_ = t.internalForce;
   totals_.released += t.released;
+  lambda_ += a.dLambda;
   time_ += dt;
   ++steps_;
 }
 
-ImplicitStepReport ImplicitSolver::step(double dt) {
+template <class Try>
+ImplicitStepReport ImplicitSolver::halving(double size, Try&& tryPiece) {
   ImplicitStepReport total;
-  double done = 0.0, piece = dt;
+  double done = 0.0, piece = size;
   int cuts = 0;
-  while (done < dt * (1.0 - 1e-12)) {
-    piece = std::min(piece, dt - done);
+  while (std::abs(done) < std::abs(size) * (1.0 - 1e-12)) {
+    piece = std::abs(piece) < std::abs(size - done) ? piece : size - done;
     Attempt a;
     const bool finest = cuts >= options_.maxCuts;
     a.snapBack = finest ? SnapBackPolicy::Release : SnapBackPolicy::Stop;  // a persisting snap-back is released
-    const bool ok = attempt(piece, a);
+    const bool ok = tryPiece(piece, a);
     total.totalIterations += a.report.totalIterations;
     total.linearSolveSeconds += a.report.linearSolveSeconds;
     if (ok) {
-      commit(a, piece);
       done += piece;
       total.iterations = std::max(total.iterations, a.report.iterations);
       total.residual = std::max(total.residual, a.report.residual);
@@ -301,20 +403,35 @@ ImplicitStepReport ImplicitSolver::step(double dt) {
       continue;
     }
     std::ostringstream msg;
-    msg << "implicit step " << steps_ + 1 << " (t = " << time_ << " to " << time_ + piece << " s, after " << cuts
-        << " halvings): " << a.why << " at Newton iteration " << a.failedIteration << ", relative residual "
-        << a.failedResidual;
+    msg << "implicit step " << steps_ + 1 << " (t = " << time_ << " s, load factor " << lambda_ << ", a piece of "
+        << piece << " after " << cuts << " halvings): " << a.why << " at Newton iteration " << a.failedIteration
+        << ", relative residual " << a.failedResidual;
     Vec2 where = Vec2::Zero();
     if (a.failedParticle != SIZE_MAX) {
       where = particles_.position[a.failedParticle];
       msg << "; particle " << a.failedParticle << " at (" << where[0] << ", " << where[1] << ") mm";
     }
-    throw SimulationError(a.failedParticle != SIZE_MAX && a.why.find("grid") != std::string::npos ? FailureKind::LeftGrid
-                                                                                                   : FailureKind::MaterialFailure,
+    throw SimulationError(a.why.find("grid") != std::string::npos ? FailureKind::LeftGrid : FailureKind::MaterialFailure,
                           steps_ + 1, a.failedParticle == SIZE_MAX ? 0 : a.failedParticle, where, msg.str(),
                           a.trial.failure.status, a.failedResidual);
   }
   return total;
+}
+
+ImplicitStepReport ImplicitSolver::step(double dt) {
+  return halving(dt, [&](double piece, Attempt& a) {
+    if (!attempt(piece, a)) return false;
+    commit(a, piece);
+    return true;
+  });
+}
+
+ImplicitStepReport ImplicitSolver::step(const IndirectControl& control, double dTau) {
+  return halving(dTau, [&](double piece, Attempt& a) {
+    if (!attemptIndirect(control, piece, a)) return false;
+    commit(a, 0.0);
+    return true;
+  });
 }
 
 }  // namespace ecm::mpm

@@ -21,6 +21,17 @@ struct ImplicitOptions {
   int maxCuts = 8;          // halvings of a step before the run fails
 };
 
+// Indirect displacement control (docs/implicit.md): the driven conditions' prescribed components
+// move by lambda times `reference` (mm per unit load factor), lambda an unknown of each step, and
+// the step is set by the growth of a combination of node displacements instead:
+// tau = sum_k c_k u_k over node components k = 2 n + d (an opening across a crack, a crack mouth).
+// The grid is reset every step, so the control is on the step's increments: d tau = sum c_k du_k.
+struct IndirectControl {
+  std::vector<std::size_t> driven;                     // indices of scene conditions
+  Vec2 reference = Vec2(0.0, 1.0);                     // mm per unit load factor, on their non-fixed components
+  std::vector<std::pair<std::int32_t, double>> terms;  // (node component, coefficient)
+};
+
 struct ImplicitStepReport {
   int iterations = 0;       // Newton iterations of the converged attempt (all attempts in `total`)
   int totalIterations = 0;
@@ -38,6 +49,10 @@ class ImplicitSolver {
   // (with the step, the iteration, the residual and the worst particle) when even the smallest
   // piece fails; the committed state is then the last converged one.
   ImplicitStepReport step(double dt);
+  // One step of indirect control: the combination grows by dTau (mm), lambda follows; halved as
+  // step() halves. The pseudo-time does not move.
+  ImplicitStepReport step(const IndirectControl& control, double dTau);
+  double loadFactor() const { return lambda_; }
 
   double time() const { return time_; }
   long steps() const { return steps_; }
@@ -50,7 +65,12 @@ class ImplicitSolver {
 
  private:
   struct Attempt;
+  // The step's prescribed components, geometry and loads (false: a particle left the grid).
+  bool prepare(double dt, const IndirectControl* control, Attempt& a);
   bool attempt(double dt, Attempt& a);  // Newton over [time_, time_ + dt]; true when converged
+  bool attemptIndirect(const IndirectControl& control, double dTau, Attempt& a);
+  template <class Try>
+  ImplicitStepReport halving(double size, Try&& tryPiece);  // the step in pieces, halved on failure
   void commit(const Attempt& a, double dt);
 
   StepSetup setup_;
@@ -61,6 +81,7 @@ class ImplicitSolver {
   RunTotals totals_;
   Eigen::VectorXd previousForce_;  // the internal forces of the last converged step (for the work)
   double time_ = 0.0;
+  double lambda_ = 0.0;  // the load factor of indirect control
   long steps_ = 0;
 };
 

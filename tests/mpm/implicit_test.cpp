@@ -5,8 +5,10 @@
 // closed form (a block in uniaxial tension: delta = F L / (E A)).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
+#include "material/uniaxial_closed_form.hpp"
 #include "mpm/implicit_solver.hpp"
 #include "test_scenes.hpp"
 
@@ -154,6 +156,104 @@ TEST(Implicit, TheAssembledTangentIsTheDerivativeOfTheInternalForce) {
               kinked, worst, scale);
   EXPECT_GT(checked, 3 * kinked);
   EXPECT_LT(worst, 1e-5 * scale);
+}
+
+}  // namespace
+}  // namespace ecm::mpm::test
+
+namespace ecm::mpm::test {
+namespace {
+
+// A bar 1000 mm long in uniaxial tension (nu = 0) with one weakened row of cells (f_t' 2.9 MPa
+// instead of 3): it cracks there and unloads elsewhere, so the top moves
+// delta = sigma L / E + w(sigma), w the band's opening of the closed form
+// (material/uniaxial_closed_form.hpp), H = the cell size (10 mm). L > h (E + E_p)/E_p = 195.6 mm:
+// past the peak delta decreases (a structural snap-back), and displacement control of the top
+// cannot follow. Indirect control on the opening across the weak row traces it.
+constexpr double kBarLength = 1000.0, kBarWeakFt = 2.9;
+
+Scene snapBackBar() {
+  Scene s;
+  s.name = "snap-back-bar";
+  s.grid = {Vec2(-10.0, -10.0), Vec2(10.0, 10.0), 4, 102};
+  MaterialParams strong = paperConcrete();
+  strong.elastic.poissonRatio = 0.0;
+  MaterialParams weak = strong;
+  weak.name = "weak";
+  weak.tensileStrength = kBarWeakFt;
+  s.materials = {strong, weak};
+  s.bodies = {{Shape::rectangle(Vec2(0.0, 0.0), Vec2(20.0, kBarLength)), 0, false, Vec2::Zero()},
+              {Shape::rectangle(Vec2(-1.0, 490.0), Vec2(21.0, 500.0)), 1, false, Vec2::Zero()}};
+  s.conditions = {NodeCondition::fixed("base", {Vec2(-1.0, 0.0), Vec2(21.0, 0.0)}, false, true),
+                  NodeCondition::fixed("corner", {Vec2(-1.0, -1.0), Vec2(0.0, 0.0)}, true, false)};
+  NodeCondition top;
+  top.name = "top";
+  top.box = {Vec2(-1.0, kBarLength), Vec2(21.0, kBarLength)};
+  top.component[1] = {Prescribed::Displacement, TimeFunction::hold(0.0)};  // driven by the load factor
+  s.conditions.push_back(top);
+  s.endTime = 1.0;
+  return s;
+}
+
+TEST(Implicit, IndirectControlTracesTheBarsStructuralSnapBack) {
+  const DamageLawParams law{32000.0, kBarWeakFt, ecm::test::kEp, ecm::test::kN};
+  ImplicitSolver solver(snapBackBar());
+  const Grid& g = solver.setup().scene.grid;
+  IndirectControl control;
+  control.driven = {2};
+  control.reference = Vec2(0.0, 1.0);  // the top moves lambda mm
+  for (int i = 0; i <= 2; ++i) {       // the opening across the weak row: mean u_y at y = 500 minus at y = 490
+    control.terms.push_back({2 * g.node(i + 1, 51) + 1, 1.0 / 3.0});
+    control.terms.push_back({2 * g.node(i + 1, 50) + 1, -1.0 / 3.0});
+  }
+  // The closed form (delta, sigma), and the traced one.
+  std::vector<double> cfDelta{0.0}, cfSigma{0.0};
+  for (double lx = 0.0; lx > -8.0; lx -= 1e-3) {
+    const UniaxialBandPoint p = uniaxialBandResponse(law, 0.0, ecm::test::kBandWidth, std::pow(10.0, lx));
+    cfDelta.push_back(p.stress * kBarLength / law.youngsModulus + p.opening);
+    cfSigma.push_back(p.stress);
+  }
+  const double d0 = kBarWeakFt * kBarLength / law.youngsModulus;
+  const auto distance = [&](double d, double s) {  // in units of f_t' L / E and f_t'
+    double best = INFINITY;
+    for (std::size_t k = 1; k < cfDelta.size(); ++k) {
+      const Vec2 a(cfDelta[k - 1] / d0, cfSigma[k - 1] / kBarWeakFt), b(cfDelta[k] / d0, cfSigma[k] / kBarWeakFt), q(d / d0, s / kBarWeakFt);
+      const double t = std::clamp((q - a).dot(b - a) / std::max((b - a).squaredNorm(), 1e-300), 0.0, 1.0);
+      best = std::min(best, (a + t * (b - a) - q).norm());
+    }
+    return best;
+  };
+  double worst = 0.0, peakDelta = 0.0, peakSigma = 0.0, deltaAfterPeak = INFINITY;
+  int iterations = 0;
+  // Steps of the opening: 1e-5 mm to past the peak (an elastic step of it moves the stress by
+  // 0.03 MPa: a larger one would carry the strong rows past their onset at 3 MPa in the trial,
+  // and Newton may then find the equilibrium where every row cracks), then 1e-4 mm.
+  const int steps = 700;
+  for (int k = 0; k < steps; ++k) {
+    const ImplicitStepReport r = solver.step(control, k < 150 ? 1e-5 : 1e-4);  // mm of opening
+    iterations += r.totalIterations;
+    const double delta = solver.conditions()[2].displacement[1];
+    const double sigma = solver.conditions()[2].reaction[1] / (20.0 * solver.setup().scene.thickness);
+    worst = std::max(worst, distance(delta, sigma));
+    if (sigma > peakSigma) peakSigma = sigma, peakDelta = delta;
+    if (sigma < peakSigma) deltaAfterPeak = std::min(deltaAfterPeak, delta);
+  }
+  std::printf("[ snap-back bar ] peak %.4f MPa at delta %.5f mm, delta falls to %.5f mm after it; worst distance to "
+              "the closed form %.2e; %d Newton iterations in %d steps; load factor %.5f\n",
+              peakSigma, peakDelta, deltaAfterPeak, worst, iterations, steps, solver.loadFactor());
+  EXPECT_NEAR(peakSigma, kBarWeakFt, 1e-3 * kBarWeakFt);
+  // Traced through the snap-back: past the peak delta falls to the closed form's least value.
+  const auto top = std::max_element(cfSigma.begin(), cfSigma.end()) - cfSigma.begin();
+  const double cfLeast = *std::min_element(cfDelta.begin() + top, cfDelta.end());
+  std::printf("[ snap-back bar ] closed form: peak at delta %.5f mm, least delta after it %.5f mm\n", cfDelta[static_cast<std::size_t>(top)], cfLeast);
+  EXPECT_LT(cfLeast, cfDelta[static_cast<std::size_t>(top)] - 0.01 * d0);  // the closed form does snap back
+  EXPECT_NEAR(deltaAfterPeak, cfLeast, 1e-3 * d0);
+  EXPECT_LT(worst, 1e-3);
+  const Particles& p = solver.particles();
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (p.band[i] >= 0) {
+      EXPECT_EQ(p.material[i], 1) << "only the weak row cracks";
+    }
 }
 
 }  // namespace
