@@ -36,6 +36,11 @@ struct Particles {
   std::vector<BandState> secondBands;
 
   std::size_t size() const { return position.size(); }
+  // 0 intact .. 1 fully damaged: the band's damage (enriched), 1 - integrity (smeared crack).
+  double damage(std::size_t i) const {
+    if (band[i] >= 0) return bands[static_cast<std::size_t>(band[i])].damage();
+    return integrity.empty() ? 0.0 : 1.0 - integrity[i];
+  }
   Vec2 displacement(std::size_t i) const { return position[i] - origin[i]; }  // mm, since the start
   void resize(std::size_t n, bool withIntegrity, bool withSecondBand = false);
   const BandState* secondBandOf(std::size_t i) const {

@@ -1,5 +1,7 @@
 #include "mpm/presets.hpp"
 
+#include <stdexcept>
+
 #include <array>
 
 namespace ecm::mpm {
@@ -37,6 +39,9 @@ std::string presetNames() {
 }
 
 void applyPreset(const Preset& p, Scene& scene) {
+  if (scene.solver.implicit)
+    throw std::invalid_argument("the presets set explicit knobs (time step, scheme); scene '" + scene.name +
+                                "' is implicit_static");
   scene.preset = std::string(p.name);
   scene.particlesPerCell = p.particlesPerCell;
   scene.solver.shapeFunction = p.shapeFunction;

@@ -16,6 +16,7 @@
 #include "io/output_error.hpp"
 #include "io/progress.hpp"
 #include "mpm/checkpoint.hpp"
+#include "mpm/implicit_run.hpp"
 #include "mpm/solver.hpp"
 #include "mpm/vtu_writer.hpp"
 
@@ -50,9 +51,11 @@ std::vector<double> historyRow(const Solver& s) {
   return row;
 }
 
+}  // namespace
+
 // The load-displacement curve: the first driven condition's displacement against its reaction,
 // else the first load against time.
-void plot(const Scene& scene, const std::filesystem::path& dir) {
+void plotLoadDisplacement(const Scene& scene, const std::filesystem::path& dir) {
   io::PlotSpec spec;
   spec.title = scene.name + ": load-displacement";
   const int base = 3;  // time, step, then 4 columns per condition (1-based gnuplot columns)
@@ -83,14 +86,14 @@ void plot(const Scene& scene, const std::filesystem::path& dir) {
   io::renderPlot(spec, dir / "load_displacement.png");
 }
 
+
 // The final state of every particle (x, y, damage, material id, normal opening and normal of the
 // band, stress), for damage and crack maps and the locking diagnosis.
 // Written as PATH.tmp, then renamed: a restart rewrites it, and a reader never sees half of it.
-void writeParticles(const Solver& s, const std::filesystem::path& path) {
+void writeParticles(const Particles& p, const std::filesystem::path& path) {
   std::filesystem::path tmp = path;
   tmp += ".tmp";
   try {
-    const Particles& p = s.particles();
     std::vector<std::string> columns{"x_mm", "y_mm", "damage", "material", "opening_mm", "normal_x", "normal_y",
                                      "sig_xx_MPa", "sig_yy_MPa", "sig_xy_MPa"};
     const bool twoBands = !p.secondBand.empty();  // second_band: orthogonal: the second band's columns
@@ -101,7 +104,7 @@ void writeParticles(const Solver& s, const std::filesystem::path& path) {
     for (std::size_t i = 0; i < p.size(); ++i) {
       const BandState* b = p.band[i] >= 0 ? &p.bands[static_cast<std::size_t>(p.band[i])] : nullptr;
       const Vec2 normal = b ? b->crackNormal : Vec2::Zero();
-      row = {p.position[i][0], p.position[i][1], s.damage(i), static_cast<double>(p.material[i]),
+      row = {p.position[i][0], p.position[i][1], p.damage(i), static_cast<double>(p.material[i]),
              b ? b->normalJump() : 0.0, normal[0], normal[1], p.stress[i][0], p.stress[i][1], p.stress[i][2]};
       if (twoBands) {
         const BandState* b2 = p.secondBandOf(i);
@@ -136,7 +139,6 @@ void plotDamage(const Scene& scene, std::size_t particles, const std::filesystem
   io::renderPlot(spec, dir / "damage_map.png");
 }
 
-}  // namespace
 
 std::vector<std::string> historyColumns(const Scene& scene) {
   std::vector<std::string> h{"time_s", "step"};
@@ -214,7 +216,7 @@ class Run {
       outputFailure(o);
     }
     if (!outputFailed_ && options_.plot && !result_.stopped) {
-      plot(scene_, options_.outputDir);
+      plotLoadDisplacement(scene_, options_.outputDir);
       plotDamage(scene_, solver_.particles().size(), options_.outputDir);
     }
     return result_;
@@ -311,7 +313,7 @@ class Run {
     for (; nextSnapshot_ < times.size() && solver_.time() >= times[nextSnapshot_] - 0.5 * solver_.timeStep(); ++nextSnapshot_) {
       std::ostringstream name;
       name << "particles_t" << times[nextSnapshot_] << ".csv";
-      writeParticles(solver_, options_.outputDir / name.str());
+      writeParticles(solver_.particles(), options_.outputDir / name.str());
     }
   }
   // What goes wrong from here on is added to the result; what was written stays readable.
@@ -323,7 +325,7 @@ class Run {
   void closeOutputs() {
     try {
       if (!outputFailed_) history_->close();
-      if (!outputFailed_) writeParticles(solver_, options_.outputDir / "particles_final.csv");  // also after a failure or a stop
+      if (!outputFailed_) writeParticles(solver_.particles(), options_.outputDir / "particles_final.csv");  // also after a failure or a stop
     } catch (const io::OutputError& o) {
       outputFailure(o);
     }
@@ -450,6 +452,9 @@ class Run {
 
 }  // namespace
 
-RunResult runScene(const Scene& scene, const RunOptions& options) { return Run(scene, options).execute(); }
+RunResult runScene(const Scene& scene, const RunOptions& options) {
+  if (scene.solver.implicit) return runImplicitScene(scene, options);
+  return Run(scene, options).execute();
+}
 
 }  // namespace ecm::mpm

@@ -11,6 +11,7 @@
 #include <functional>
 #include <string>
 
+#include "mpm/particles.hpp"
 #include "mpm/scene.hpp"
 
 namespace ecm::mpm {
@@ -59,5 +60,12 @@ RunResult runScene(const Scene& scene, const RunOptions& options);
 
 // The columns of history.csv for a scene.
 std::vector<std::string> historyColumns(const Scene& scene);
+// The outputs both solvers write: the final particles (particles_final.csv: x, y, damage,
+// material, opening, normal, stress; atomically), the damage map of that file, and the
+// load-displacement PNG of history.csv (its first columns: time, step, each condition's
+// displacement and reaction).
+void writeParticles(const Particles& particles, const std::filesystem::path& path);
+void plotDamage(const Scene& scene, std::size_t particles, const std::filesystem::path& dir);
+void plotLoadDisplacement(const Scene& scene, const std::filesystem::path& dir);
 
 }  // namespace ecm::mpm

@@ -79,8 +79,38 @@ void validateBodies(const Scene& s) {
   }
 }
 
+// The implicit settings (docs/implicit.md): ranges, the driven conditions and the control's nodes.
+void validateImplicit(const Scene& s) {
+  const ImplicitSettings& im = *s.solver.implicit;
+  requireRange("solver.tolerance", im.tolerance, 0.0, 1e-2, false, true);
+  requireRange("solver.max_iterations", im.maxIterations, 1.0, 500.0, true, true);
+  requireRange("solver.max_halvings", im.maxHalvings, 0.0, 30.0, true, true);
+  if (s.checkpoint.everySteps > 0 || s.checkpoint.everyMinutes > 0.0)
+    throw ValueError("checkpoint", "implicit_static scenes have no checkpoints yet");
+  if (!im.indirect) {
+    requireRange("solver.load_step", im.loadStep, 0.0, s.endTime, false, true);
+    return;
+  }
+  const auto& c = *im.indirect;
+  if (c.driven.empty()) throw ValueError("solver.control.indirect.driven", "names no condition");
+  for (const std::string& name : c.driven)
+    if (!findCondition(s.conditions, name)) throw ValueError("solver.control.indirect.driven", "no condition named '" + name + "'");
+  if (!c.reference.allFinite() || c.reference.squaredNorm() == 0.0)
+    throw ValueError("solver.control.indirect.reference", "must be finite and not zero (mm per unit load factor)");
+  if (c.terms.empty()) throw ValueError("solver.control.indirect.opening", "names no node");
+  for (std::size_t i = 0; i < c.terms.size(); ++i) {
+    const Vec2 local = (c.terms[i].at - s.grid.origin).cwiseQuotient(s.grid.cellSize);
+    if (!(local.minCoeff() >= -0.5 && local[0] <= s.grid.cellsX + 0.5 && local[1] <= s.grid.cellsY + 0.5))
+      throw ValueError(item("solver.control.indirect.opening", i), "the node is outside the grid");
+    if (!std::isfinite(c.terms[i].coefficient)) throw ValueError(item("solver.control.indirect.opening", i), "coefficient must be finite");
+  }
+  requireRange("solver.control.indirect.step", c.step, 0.0, INFINITY, false, false);
+  requireRange("solver.control.indirect.until", c.until, c.step, INFINITY, true, false);
+}
+
 void validateSolver(const Scene& s) {
   const SolverSettings& v = s.solver;
+  if (v.implicit) validateImplicit(s);
   requireRange("particles_per_cell", s.particlesPerCell, 1.0, 8.0, true, true);
   requireRange("solver.flip", v.flip, 0.0, 1.0, true, true);
   requireRange("solver.cfl", v.cfl, 0.0, 1.0, false, true);  // beyond 1 the explicit step is unstable

@@ -27,6 +27,33 @@ struct Damping {
   double viscous = 0.0;  // f -= viscous m v (1/s)
 };
 
+// One term of an indirect control's combination: `coefficient` times the displacement component
+// (0 x, 1 y) of the grid node nearest `at` (mm).
+struct ControlTerm {
+  Vec2 at = Vec2::Zero();
+  int component = 1;
+  double coefficient = 1.0;
+};
+
+// Implicit quasi-static solution (solver: {scheme: implicit_static}; docs/implicit.md). The
+// scene's time is a pseudo-time: the load steps go `load_step` at a time to end_time, or, under
+// indirect control, the combination of node displacements grows `step` mm per load step to
+// `until` mm while the driven conditions follow the load factor.
+struct ImplicitSettings {
+  double tolerance = 1e-6;  // force residual relative to the loads, reactions and internal forces
+  int maxIterations = 25;   // Newton iterations of a step before it is halved
+  int maxHalvings = 8;
+  double loadStep = 0.0;    // pseudo-time per load step (s), displacement control
+  struct Indirect {
+    std::vector<std::string> driven;  // conditions moved by the load factor
+    Vec2 reference = Vec2(0.0, 1.0);  // their displacement per unit load factor (mm)
+    std::vector<ControlTerm> terms;   // tau = sum of the terms
+    double step = 0.0;                // d tau per load step (mm)
+    double until = 0.0;               // tau at the end (mm)
+  };
+  std::optional<Indirect> indirect;
+};
+
 struct SolverSettings {
   UpdateScheme scheme = UpdateScheme::USL;
   ShapeFunction shapeFunction = ShapeFunction::Linear;
@@ -40,6 +67,7 @@ struct SolverSettings {
   // increment): Release lets the band fail onto its stable branch (counted, reported); Stop
   // stops the run with the point's position and state.
   SnapBackPolicy snapBack = SnapBackPolicy::Release;
+  std::optional<ImplicitSettings> implicit;  // scheme: implicit_static (then `scheme` is unused)
 };
 
 // When a run writes its checkpoint (mpm/checkpoint.hpp) besides on a stop request: every N steps

@@ -86,11 +86,57 @@ std::string presetOwns(const std::string& preset) {
   return "set by preset '" + preset + "' (mpm/presets.hpp); remove the preset or this key";
 }
 
+// solver: {scheme: implicit_static, ...}: the explicit keys are refused, the implicit ones read.
+SolverSettings readImplicitSolver(const YamlMap& m) {
+  for (const char* k : {"flip", "cfl", "local_damping", "viscous_damping"})
+    m.reject(k, "is a key of explicit scenes (implicit_static has no time step, mass or damping)");
+  SolverSettings s;
+  const std::string shape = m.getEnumOr("shape_function", {"linear", "ugimp", "bspline2"}, "linear");
+  s.shapeFunction = shape == "ugimp" ? ShapeFunction::UGimp : (shape == "bspline2" ? ShapeFunction::BSpline2 : ShapeFunction::Linear);
+  s.effectiveSize = m.getEnumOr("effective_size", {"sqrt", "oriented"}, "sqrt") == "oriented" ? EffectiveSizeRule::Oriented
+                                                                                               : EffectiveSizeRule::SquareRoot;
+  if (m.has("gravity")) s.gravity = vec2(m, "gravity");
+  s.substepLevels = m.getOr<int>("substep_levels", s.substepLevels);
+  s.snapBack = io::readSnapBackPolicy(m);
+  ImplicitSettings im;
+  im.tolerance = m.getOr<double>("tolerance", im.tolerance);
+  im.maxIterations = m.getOr<int>("max_iterations", im.maxIterations);
+  im.maxHalvings = m.getOr<int>("max_halvings", im.maxHalvings);
+  if (m.has("control")) {
+    const YamlMap c = m.child("control");
+    const YamlMap i = c.child("indirect");
+    ImplicitSettings::Indirect ind;
+    ind.driven = i.scalarSequence<std::string>("driven");
+    if (i.has("reference")) ind.reference = vec2(i, "reference");
+    for (const YamlMap& t : i.sequence("opening")) {
+      ControlTerm term;
+      term.at = vec2(t, "node");
+      term.component = t.getEnum("component", {"x", "y"}) == "x" ? 0 : 1;
+      term.coefficient = t.getOr<double>("coefficient", 1.0);
+      t.finish();
+      ind.terms.push_back(term);
+    }
+    ind.step = i.get<double>("step");
+    ind.until = i.get<double>("until");
+    i.finish();
+    c.finish();
+    im.indirect = ind;
+    m.reject("load_step", "is set by the indirect control's step");
+  } else {
+    im.loadStep = m.get<double>("load_step");
+  }
+  s.implicit = im;
+  return s;
+}
+
 SolverSettings readSolver(const YamlMap& m, const std::string& preset) {
   if (!preset.empty())
     for (const char* k : {"shape_function", "scheme", "cfl"}) m.reject(k, presetOwns(preset));
   SolverSettings s;
-  const std::string scheme = m.getEnumOr("scheme", {"usf", "usl", "musl"}, "usl");
+  const std::string scheme = m.getEnumOr("scheme", {"usf", "usl", "musl", "implicit_static"}, "usl");
+  if (scheme == "implicit_static") return readImplicitSolver(m);
+  for (const char* k : {"tolerance", "max_iterations", "max_halvings", "load_step", "control"})
+    m.reject(k, "is a key of implicit_static scenes (this one is explicit)");
   s.scheme = scheme == "usf" ? UpdateScheme::USF : (scheme == "musl" ? UpdateScheme::MUSL : UpdateScheme::USL);
   const std::string shape = m.getEnumOr("shape_function", {"linear", "ugimp", "bspline2"}, "linear");
   s.shapeFunction = shape == "ugimp" ? ShapeFunction::UGimp : (shape == "bspline2" ? ShapeFunction::BSpline2 : ShapeFunction::Linear);

@@ -44,6 +44,10 @@
 //     substep_levels: 4         # failed material updates retried with up to 2^levels sub-steps
 //     snap_back: release        # release | stop: an enriched point with no stable branch fails
 //                               # onto its stable branch (counted in summary.json) or stops the run
+//   (or, implicit: solver: {scheme: implicit_static, tolerance: 1e-6, max_iterations: 25,
+//    max_halvings: 8, load_step: S | control: {indirect: {driven: [..], reference: [x, y],
+//    opening: [{node: [x, y], component: y, coefficient: 1}, ..], step: MM, until: MM}}};
+//    no flip, cfl or damping; docs/implicit.md, docs/inputs.md)
 //   end_time: 1e-3              # s
 //   output_interval: 1e-5       # s (0: first and last step only)
 //   snapshot_every: 10          # optional: a VTU snapshot every N-th output step (default 1)

@@ -75,11 +75,6 @@ void Solver::restoreStepState(const StepState& s) {
   rebuildGridNextStep();
 }
 
-double Solver::damage(std::size_t i) const {
-  const Particles& p = state_.particles;
-  if (p.band[i] >= 0) return p.bands[static_cast<std::size_t>(p.band[i])].damage();
-  if (!p.integrity.empty()) return 1.0 - p.integrity[i];
-  return 0.0;
-}
+double Solver::damage(std::size_t i) const { return state_.particles.damage(i); }
 
 }  // namespace ecm::mpm
