@@ -42,7 +42,9 @@ RunResult runImplicitScene(const Scene& scene, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   const ImplicitSettings& settings = *scene.solver.implicit;
   io::prepareOutputDir(options.outputDir);
-  ImplicitSolver solver(scene, options.threads, {settings.tolerance, settings.maxIterations, settings.maxHalvings});
+  ImplicitSolver solver(scene, options.threads,
+                        {settings.tolerance, settings.maxIterations, settings.maxHalvings,
+                         settings.umfpack ? LinearSolverKind::Umfpack : LinearSolverKind::SparseLU});
   RunResult result;
   result.particles = solver.particles().size();
 
@@ -128,6 +130,7 @@ RunResult runImplicitScene(const Scene& scene, const RunOptions& options) {
   j["most_newton_iterations_in_a_step"] = mostIterations;
   j["halvings"] = halvings;
   j["linear_solve_s"] = linearSolve;
+  j["linear_solver"] = settings.umfpack ? "umfpack" : "sparselu";
   j["snap_back_releases"] = released;
   j["cracked_particles"] = cracked;
   const Energies e = solver.energies();

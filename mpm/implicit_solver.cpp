@@ -127,8 +127,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
   // Newton on the unknowns.
   const DofMap& dofs = a.geometry.dofs;
   const int n = dofs.unknowns();
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
-  bool analysed = false;
+  LinearSolver lu(options_.linearSolver);
   const auto residualOf = [&](const Trial& t, double& relative) {
     Eigen::VectorXd r(n);
     double reference = 0.0;
@@ -157,13 +156,11 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
     }
     if (n > 0) {
       const double t0 = omp_get_wtime();
-      lu.analyzePattern(start.tangent);
-      analysed = true;
-      lu.factorize(start.tangent);
+      const bool factored = lu.factorize(start.tangent);
       Eigen::VectorXd delta;
-      if (lu.info() == Eigen::Success) delta = lu.solve(rhs);
+      if (factored) delta = lu.solve(rhs);
       a.report.linearSolveSeconds += omp_get_wtime() - t0;
-      if (lu.info() != Eigen::Success || !delta.allFinite()) {
+      if (!factored || !delta.allFinite()) {
         a.why = "the tangent at the step's start is singular";
         return false;
       }
@@ -193,15 +190,11 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       return false;
     }
     const double start = omp_get_wtime();
-    if (!analysed) {
-      lu.analyzePattern(a.trial.tangent);
-      analysed = true;
-    }
-    lu.factorize(a.trial.tangent);
+    const bool factored = lu.factorize(a.trial.tangent);
     Eigen::VectorXd delta;
-    if (lu.info() == Eigen::Success) delta = lu.solve(r);
+    if (factored) delta = lu.solve(r);
     a.report.linearSolveSeconds += omp_get_wtime() - start;
-    if (lu.info() != Eigen::Success || !delta.allFinite()) {
+    if (!factored || !delta.allFinite()) {
       a.failedIteration = it;
       a.failedResidual = relative;
       a.why = "the tangent is singular";
@@ -243,8 +236,7 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
   Eigen::VectorXd c = Eigen::VectorXd::Zero(components);
   for (const auto& [k, coefficient] : control.terms) c[k] += coefficient;
   const double cPrescribed = c.dot(a.direction);  // d tau per unit load factor through the driven components
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
-  bool analysed = false;
+  LinearSolver lu(options_.linearSolver);
   double dLambda = 0.0;
   // Newton on (du_f, d lambda) with the bordered system, from du = 0 (the first iteration is the
   // predictor): K_ff d_f + (K u^)_f d_lambda = r_f and c . (d_f + d_lambda u^) = d tau - c . du,
@@ -282,15 +274,11 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
       return false;
     }
     const double start = omp_get_wtime();
-    if (!analysed) {
-      lu.analyzePattern(t.tangent);
-      analysed = true;
-    }
-    lu.factorize(t.tangent);
+    const bool factored = lu.factorize(t.tangent);
     Eigen::VectorXd x, y;
-    if (lu.info() == Eigen::Success) x = lu.solve(r), y = -lu.solve(ku);
+    if (factored) x = lu.solve(r), y = -lu.solve(ku);
     a.report.linearSolveSeconds += omp_get_wtime() - start;
-    if (lu.info() != Eigen::Success || !x.allFinite() || !y.allFinite()) {
+    if (!factored || !x.allFinite() || !y.allFinite()) {
       a.failedIteration = it;
       a.failedResidual = relative;
       a.why = "the tangent is singular";

@@ -7,11 +7,11 @@
 //
 // Prescribed components over a step [t, t + dt]: Fixed 0; Displacement u(t + dt) - u(t);
 // Velocity dt v(t + dt) (a rate in pseudo-time); an affine field dt scale(t + dt) G (x - o).
-#include <Eigen/SparseLU>
 
 #include <vector>
 
 #include "mpm/implicit_system.hpp"
+#include "mpm/linear_solver.hpp"
 
 namespace ecm::mpm {
 
@@ -19,6 +19,7 @@ struct ImplicitOptions {
   double tolerance = 1e-6;  // |residual| <= tolerance * max(|loads|, |reactions|, |internal forces|)
   int maxIterations = 25;   // Newton iterations per attempt
   int maxCuts = 8;          // halvings of a step before the run fails
+  LinearSolverKind linearSolver = available(LinearSolverKind::Umfpack) ? LinearSolverKind::Umfpack : LinearSolverKind::SparseLU;
 };
 
 // Indirect displacement control (docs/implicit.md): the driven conditions' prescribed components

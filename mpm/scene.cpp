@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "io/value_error.hpp"
+#include "mpm/linear_solver.hpp"
 
 namespace ecm::mpm {
 
@@ -85,6 +86,8 @@ void validateImplicit(const Scene& s) {
   requireRange("solver.tolerance", im.tolerance, 0.0, 1e-2, false, true);
   requireRange("solver.max_iterations", im.maxIterations, 1.0, 500.0, true, true);
   requireRange("solver.max_halvings", im.maxHalvings, 0.0, 30.0, true, true);
+  if (im.umfpack && !available(LinearSolverKind::Umfpack))
+    throw ValueError("solver.linear_solver", "this build has no UMFPACK (libsuitesparse-dev); use sparselu");
   if (s.checkpoint.everySteps > 0 || s.checkpoint.everyMinutes > 0.0)
     throw ValueError("checkpoint", "implicit_static scenes have no checkpoints yet");
   if (!im.indirect) {

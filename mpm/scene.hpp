@@ -44,6 +44,7 @@ struct ImplicitSettings {
   int maxIterations = 25;   // Newton iterations of a step before it is halved
   int maxHalvings = 8;
   double loadStep = 0.0;    // pseudo-time per load step (s), displacement control
+  bool umfpack = false;     // the LU: UMFPACK (the default when the build has it) or Eigen's SparseLU (docs/implicit.md)
   struct Indirect {
     std::vector<std::string> driven;  // conditions moved by the load factor
     Vec2 reference = Vec2(0.0, 1.0);  // their displacement per unit load factor (mm)

@@ -4,6 +4,7 @@
 
 #include "io/material_yaml.hpp"
 #include "io/value_error.hpp"
+#include "mpm/linear_solver.hpp"
 #include "mpm/memory_estimate.hpp"
 #include "mpm/presets.hpp"
 
@@ -102,6 +103,8 @@ SolverSettings readImplicitSolver(const YamlMap& m) {
   im.tolerance = m.getOr<double>("tolerance", im.tolerance);
   im.maxIterations = m.getOr<int>("max_iterations", im.maxIterations);
   im.maxHalvings = m.getOr<int>("max_halvings", im.maxHalvings);
+  im.umfpack = m.getEnumOr("linear_solver", {"umfpack", "sparselu"}, available(LinearSolverKind::Umfpack) ? "umfpack" : "sparselu") ==
+               "umfpack";
   if (m.has("control")) {
     const YamlMap c = m.child("control");
     const YamlMap i = c.child("indirect");
@@ -135,7 +138,7 @@ SolverSettings readSolver(const YamlMap& m, const std::string& preset) {
   SolverSettings s;
   const std::string scheme = m.getEnumOr("scheme", {"usf", "usl", "musl", "implicit_static"}, "usl");
   if (scheme == "implicit_static") return readImplicitSolver(m);
-  for (const char* k : {"tolerance", "max_iterations", "max_halvings", "load_step", "control"})
+  for (const char* k : {"tolerance", "max_iterations", "max_halvings", "load_step", "control", "linear_solver"})
     m.reject(k, "is a key of implicit_static scenes (this one is explicit)");
   s.scheme = scheme == "usf" ? UpdateScheme::USF : (scheme == "musl" ? UpdateScheme::MUSL : UpdateScheme::USL);
   const std::string shape = m.getEnumOr("shape_function", {"linear", "ugimp", "bspline2"}, "linear");
