@@ -86,7 +86,6 @@ void plotLoadDisplacement(const Scene& scene, const std::filesystem::path& dir) 
   io::renderPlot(spec, dir / "load_displacement.png");
 }
 
-
 // The final state of every particle (x, y, damage, material id, normal opening and normal of the
 // band, stress), for damage and crack maps and the locking diagnosis.
 // Written as PATH.tmp, then renamed: a restart rewrites it, and a reader never sees half of it.
@@ -138,7 +137,6 @@ void plotDamage(const Scene& scene, std::size_t particles, const std::filesystem
   spec.series.push_back({"particles_final.csv", "1:2:3", "", "", "points pt 5 ps " + std::to_string(size) + " lc palette"});
   io::renderPlot(spec, dir / "damage_map.png");
 }
-
 
 std::vector<std::string> historyColumns(const Scene& scene) {
   std::vector<std::string> h{"time_s", "step"};
