@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <utility>
 
 #include "mpm/errors.hpp"
 #include "mpm/phases.hpp"
@@ -44,6 +46,17 @@ struct ImplicitSolver::Attempt {
   double failedResidual = 0.0;
   std::size_t failedParticle = SIZE_MAX;
   std::string why;
+
+  // Records why the attempt failed; returns false, for `return a.fail(...)`.
+  bool fail(int iteration, double residual, std::string reason) {
+    failedIteration = iteration, failedResidual = residual, why = std::move(reason);
+    return false;
+  }
+  // A material update of `t` failed: the particle and its material's explanation.
+  bool failInMaterial(int iteration, const Trial& t, const StepSetup& setup, const Particles& p) {
+    failedParticle = t.failed;
+    return fail(iteration, 0.0, setup.materials[p.material[t.failed]].explain(t.failure));
+  }
 };
 
 ImplicitSolver::ImplicitSolver(Scene scene, int threads, ImplicitOptions options) : options_(options) {
@@ -93,8 +106,7 @@ bool ImplicitSolver::prepare(double dt, const IndirectControl* control, Attempt&
   std::size_t outside = 0;
   if (!stepGeometry(setup_, particles_, a.prescribed, a.geometry, outside)) {
     a.failedParticle = outside;
-    a.why = "its shape-function support left the grid";
-    return false;
+    return a.fail(0, 0.0, "its shape-function support left the grid");
   }
   // Loads and gravity at the step's end.
   a.external.setZero(components);
@@ -145,9 +157,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
     evaluateTrial(setup_, particles_, a.geometry, Eigen::VectorXd::Zero(components), true, a.snapBack, start,
                   &prescribedIncrements);
     if (start.failed != SIZE_MAX) {
-      a.failedParticle = start.failed;
-      a.why = setup_.materials[particles_.material[start.failed]].explain(start.failure);
-      return false;
+      return a.failInMaterial(0, start, setup_, particles_);
     }
     Eigen::VectorXd rhs(n);
     for (int u = 0; u < n; ++u) {
@@ -161,8 +171,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       if (factored) delta = lu.solve(rhs);
       a.report.linearSolveSeconds += omp_get_wtime() - t0;
       if (!factored || !delta.allFinite()) {
-        a.why = "the tangent at the step's start is singular";
-        return false;
+        return a.fail(0, 0.0, "the tangent at the step's start is singular");
       }
       for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] = delta[u];
     }
@@ -170,10 +179,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
   evaluateTrial(setup_, particles_, a.geometry, a.du, true, a.snapBack, a.trial);
   for (int it = 0;; ++it) {
     if (a.trial.failed != SIZE_MAX) {
-      a.failedIteration = it;
-      a.failedParticle = a.trial.failed;
-      a.why = setup_.materials[particles_.material[a.trial.failed]].explain(a.trial.failure);
-      return false;
+      return a.failInMaterial(it, a.trial, setup_, particles_);
     }
     double relative = 0.0;
     const Eigen::VectorXd r = residualOf(a.trial, relative);
@@ -184,10 +190,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       return true;
     }
     if (it >= options_.maxIterations) {
-      a.failedIteration = it;
-      a.failedResidual = relative;
-      a.why = "Newton did not converge";
-      return false;
+      return a.fail(it, relative, "Newton did not converge");
     }
     const double start = omp_get_wtime();
     const bool factored = lu.factorize(a.trial.tangent);
@@ -195,10 +198,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
     if (factored) delta = lu.solve(r);
     a.report.linearSolveSeconds += omp_get_wtime() - start;
     if (!factored || !delta.allFinite()) {
-      a.failedIteration = it;
-      a.failedResidual = relative;
-      a.why = "the tangent is singular";
-      return false;
+      return a.fail(it, relative, "the tangent is singular");
     }
     // Backtracking line search on |r|: the full step, then halves, the best kept.
     Eigen::VectorXd full = Eigen::VectorXd::Zero(a.du.size());
@@ -247,10 +247,7 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
     evaluateTrial(setup_, particles_, a.geometry, du, true, a.snapBack, t, &a.direction);
     a.report.totalIterations++;
     if (t.failed != SIZE_MAX) {
-      a.failedIteration = it;
-      a.failedParticle = t.failed;
-      a.why = setup_.materials[particles_.material[t.failed]].explain(t.failure);
-      return false;
+      return a.failInMaterial(it, t, setup_, particles_);
     }
     Eigen::VectorXd r(n), ku(n);
     for (int u = 0; u < n; ++u) {
@@ -268,10 +265,7 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
       return true;
     }
     if (it >= options_.maxIterations) {
-      a.failedIteration = it;
-      a.failedResidual = relative;
-      a.why = "Newton did not converge";
-      return false;
+      return a.fail(it, relative, "Newton did not converge");
     }
     const double start = omp_get_wtime();
     const bool factored = lu.factorize(t.tangent);
@@ -279,10 +273,7 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
     if (factored) x = lu.solve(r), y = -lu.solve(ku);
     a.report.linearSolveSeconds += omp_get_wtime() - start;
     if (!factored || !x.allFinite() || !y.allFinite()) {
-      a.failedIteration = it;
-      a.failedResidual = relative;
-      a.why = "the tangent is singular";
-      return false;
+      return a.fail(it, relative, "the tangent is singular");
     }
     double cx = 0.0, cy = 0.0;
     for (int u = 0; u < n; ++u) {
@@ -291,10 +282,7 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
     }
     const double denominator = cy + cPrescribed;
     if (!(std::abs(denominator) > 0.0)) {
-      a.failedIteration = it;
-      a.failedResidual = relative;
-      a.why = "the control does not see the driven conditions (c . du does not change with the load factor)";
-      return false;
+      return a.fail(it, relative, "the control does not see the driven conditions (c . du does not change with the load factor)");
     }
     const double deltaLambda = (g - cx) / denominator;
     for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] += x[u] + deltaLambda * y[u];

@@ -11,7 +11,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "material/uniaxial_closed_form.hpp"
+#include "bar_closed_form.hpp"
 #include "test_scenes.hpp"
 
 namespace ecm::mpm::test {
@@ -44,42 +44,9 @@ Scene crackingBlock(int cells) {
   return s;
 }
 
-// sigma(delta) of the closed form: elastic up to f_t', then the band's branch, delta = sigma L/E + w.
-struct ClosedForm {
-  std::vector<double> delta, sigma;
-  explicit ClosedForm(const DamageLawParams& law) {
-    delta.push_back(0.0), sigma.push_back(0.0);
-    for (double lx = 0.0; lx > -8.0; lx -= 2e-3) {
-      const UniaxialBandPoint p = uniaxialBandResponse(law, 0.0, 0.05, std::pow(10.0, lx));
-      delta.push_back(p.stress * kLength / law.youngsModulus + p.opening);
-      sigma.push_back(p.stress);
-    }
-  }
-  // Distance of (d, s) to the curve, with delta in units of the peak displacement f_t' L / E and
-  // sigma in units of f_t': on the steep post-peak branch (d sigma / d delta = -336 MPa/mm) a
-  // stress difference at equal delta would mostly measure a tiny lag in delta.
-  double distance(double d, double s) const {
-    const double d0 = kWeakFt * kLength / 32000.0;
-    double best = INFINITY;
-    for (std::size_t k = 1; k < delta.size(); ++k) {
-      const Vec2 a(delta[k - 1] / d0, sigma[k - 1] / kWeakFt), b(delta[k] / d0, sigma[k] / kWeakFt), q(d / d0, s / kWeakFt);
-      const double t = std::clamp((q - a).dot(b - a) / std::max((b - a).squaredNorm(), 1e-300), 0.0, 1.0);
-      best = std::min(best, (a + t * (b - a) - q).norm());
-    }
-    return best;
-  }
-  double operator()(double d) const {
-    const auto it = std::upper_bound(delta.begin(), delta.end(), d);
-    if (it == delta.end()) return sigma.back();
-    const std::size_t k = static_cast<std::size_t>(it - delta.begin());
-    const double t = (d - delta[k - 1]) / (delta[k] - delta[k - 1]);
-    return sigma[k - 1] + t * (sigma[k] - sigma[k - 1]);
-  }
-};
-
 TEST(CrackedBlock, QuasiStaticTensionFollowsTheEnrichedPointWithinOnePercent) {
   const DamageLawParams law{32000.0, kWeakFt, 8.184, 0.128};
-  const ClosedForm exact(law);
+  const BarClosedForm exact(law, kLength, 0.05, 2e-3);
   ASSERT_TRUE(std::is_sorted(exact.delta.begin(), exact.delta.end())) << "the closed form snaps back";
   Solver solver(crackingBlock(10), 1);
   double worst = 0.0, worstAt = 0.0, peak = 0.0;
