@@ -48,6 +48,15 @@ struct NodeCondition {
   }
 };
 
+// A condition that moves its nodes (a displacement or velocity history, or an affine field), as
+// opposed to one that only holds them: its reaction is the structure's load.
+inline bool isDriven(const NodeCondition& c) {
+  if (c.field) return true;
+  for (const auto& k : c.component)
+    if (k.kind == Prescribed::Velocity || k.kind == Prescribed::Displacement) return true;
+  return false;
+}
+
 // The index of the condition called `name`, if there is one.
 inline std::optional<std::size_t> findCondition(const std::vector<NodeCondition>& conditions, std::string_view name) {
   const auto it = std::find_if(conditions.begin(), conditions.end(), [&](const NodeCondition& c) { return c.name == name; });

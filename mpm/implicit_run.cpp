@@ -49,9 +49,11 @@ RunResult runImplicitScene(const Scene& scene, const RunOptions& options) {
   result.particles = solver.particles().size();
 
   std::vector<std::string> columns = historyColumns(scene);
-  for (const char* c : {"load_factor", "newton_iterations", "halvings", "snapback_releases"}) columns.emplace_back(c);
+  for (const char* c : {"load_factor", "newton_iterations", "halvings", "snapback_releases", "load_step", "onset_overshoot",
+                        "internal_work_Nmm", "work_dissipated_Nmm"})
+    columns.emplace_back(c);
   io::CsvWriter history(options.outputDir / "history.csv", columns);
-  long iterations = 0, halvings = 0, released = 0;
+  long iterations = 0, halvings = 0, released = 0, factorizations = 0;
   int mostIterations = 0;
   double linearSolve = 0.0;
   const auto row = [&](const ImplicitStepReport& r) {
@@ -65,12 +67,20 @@ RunResult runImplicitScene(const Scene& scene, const RunOptions& options) {
     long cracked = 0;
     for (const auto b : solver.particles().band) cracked += b >= 0 ? 1 : 0;
     v.insert(v.end(), {0.0, e.strain, e.externalWork, e.dissipated, 0.0, static_cast<double>(cracked), solver.loadFactor(),
-                       static_cast<double>(r.totalIterations), static_cast<double>(r.cuts), static_cast<double>(r.released)});
+                       static_cast<double>(r.totalIterations), static_cast<double>(r.cuts), static_cast<double>(r.released), r.size,
+                       r.onsetOvershoot, solver.internalWork(), solver.internalWork() - e.strain});
     history.row(v);
     history.flush();
   };
+  // The peak of the driven conditions' reactions (all conditions' if none is driven) and loads, as
+  // explicit runs report it.
+  bool anyDriven = false;
+  for (const NodeCondition& c : scene.conditions) anyDriven = anyDriven || isDriven(c);
   const auto trackPeak = [&] {
-    for (const ConditionState& c : solver.conditions()) result.peakLoad = std::max(result.peakLoad, c.reaction.norm());
+    for (std::size_t i = 0; i < scene.conditions.size(); ++i)
+      if (isDriven(scene.conditions[i]) || !anyDriven)
+        result.peakLoad = std::max(result.peakLoad, solver.conditions()[i].reaction.norm());
+    for (const Load& l : scene.loads) result.peakLoad = std::max(result.peakLoad, (l.force * l.history(solver.time())).norm());
   };
   std::unique_ptr<io::Progress> progress;
   const double total = settings.indirect ? settings.indirect->until : scene.endTime;
@@ -83,14 +93,15 @@ RunResult runImplicitScene(const Scene& scene, const RunOptions& options) {
   try {
     double done = 0.0;
     const IndirectControl control = settings.indirect ? indirectControl(scene) : IndirectControl{};
+    const double largest = settings.indirect ? settings.indirect->step : settings.loadStep;
     while (done < total * (1.0 - 1e-12)) {
-      const double size = settings.indirect ? std::min(settings.indirect->step, total - done)
-                                            : std::min(settings.loadStep, total - done);
-      const ImplicitStepReport r = settings.indirect ? solver.step(control, size) : solver.step(size);
-      done += size;
+      const ImplicitStepReport r = settings.indirect ? solver.advance(control, largest, total - done)
+                                                     : solver.advance(largest, total - done);
+      done += r.size;
       iterations += r.totalIterations, halvings += r.cuts, released += r.released;
       mostIterations = std::max(mostIterations, r.totalIterations);
       linearSolve += r.linearSolveSeconds;
+      factorizations += r.factorizations;
       trackPeak();
       row(r);
       if (progress) progress->update(done);
@@ -130,11 +141,19 @@ RunResult runImplicitScene(const Scene& scene, const RunOptions& options) {
   j["most_newton_iterations_in_a_step"] = mostIterations;
   j["halvings"] = halvings;
   j["linear_solve_s"] = linearSolve;
+  j["factorizations"] = factorizations;
   j["linear_solver"] = settings.umfpack ? "umfpack" : "sparselu";
   j["snap_back_releases"] = released;
   j["cracked_particles"] = cracked;
   const Energies e = solver.energies();
-  j["energies_Nmm"] = {{"strain", e.strain}, {"external_work", e.externalWork}, {"dissipated", e.dissipated}};
+  // Two dissipations (docs/implicit.md, "Energies"): the model's f int Y dD, and the internal work
+  // minus the strain energy, which the external work balances step by step.
+  j["energies_Nmm"] = {{"strain", e.strain},
+                       {"external_work", e.externalWork},
+                       {"internal_work", solver.internalWork()},
+                       {"dissipated", e.dissipated},
+                       {"work_dissipated", solver.internalWork() - e.strain}};
+  j["energy_balance"] = std::abs(e.externalWork - solver.internalWork()) / std::max(std::abs(e.externalWork), 1e-300);
   j["wall_time_s"] = result.wallTime;
   j["threads"] = solver.setup().threads;
   io::writeJsonSummary(j, options.outputDir / "summary.json");

@@ -32,10 +32,11 @@ double prescribedIncrement(const ComponentCondition& c, double t, double dt) {
 
 // One try at a step: its geometry, the prescribed components and loads, and Newton's iterate.
 struct ImplicitSolver::Attempt {
-  StepGeometry geometry;
   std::vector<std::uint8_t> prescribed;  // per node component
   Eigen::VectorXd du;                    // per node component (mm)
   Eigen::VectorXd external;              // loads and gravity at the step's end, per node component (N)
+  Eigen::VectorXd externalStart;         // the same at the step's start
+  Eigen::VectorXd startForce;            // the internal forces at the step's start (du = 0), on its geometry
   Eigen::VectorXd direction;             // indirect control: the driven components' reference (mm per unit load factor)
   double dLambda = 0.0;                  // indirect control: the load factor's increment
   Trial trial;                           // at du
@@ -59,7 +60,8 @@ struct ImplicitSolver::Attempt {
   }
 };
 
-ImplicitSolver::ImplicitSolver(Scene scene, int threads, ImplicitOptions options) : options_(options) {
+ImplicitSolver::ImplicitSolver(Scene scene, int threads, ImplicitOptions options)
+    : options_(options), lu_(options.linearSolver) {
   Particles seeded = seedParticles(scene);
   setup_ = makeStepSetup(std::move(scene), seeded.size(), threads, 4096);
   MpmState st = initialState(setup_, std::move(seeded));
@@ -103,84 +105,109 @@ bool ImplicitSolver::prepare(double dt, const IndirectControl* control, Attempt&
       }
     }
   }
-  std::size_t outside = 0;
-  if (!stepGeometry(setup_, particles_, a.prescribed, a.geometry, outside)) {
-    a.failedParticle = outside;
-    return a.fail(0, 0.0, "its shape-function support left the grid");
+  // The geometry of the committed state (the pieces of a halved step share it).
+  if (geometryStep_ != steps_ || geometry_.prescribed != a.prescribed) {
+    std::size_t outside = 0;
+    geometryStep_ = -1;
+    if (!stepGeometry(setup_, particles_, a.prescribed, geometry_, outside)) {
+      a.failedParticle = outside;
+      return a.fail(0, 0.0, "its shape-function support left the grid");
+    }
+    geometryStep_ = steps_;
   }
-  // Loads and gravity at the step's end.
-  a.external.setZero(components);
+  // Loads and gravity at the step's start and end.
   const int nx = grid.nodesX(), support = supportSize(scene.solver.shapeFunction);
-  const auto spread = [&](const Stencil& s, const Vec2& f) {
+  const auto spread = [&](Eigen::VectorXd& into, const Stencil& s, const Vec2& f) {
     for (int j = 0; j < support; ++j)
       for (int k = 0; k < support; ++k) {
         const Eigen::Index n = s.base + j * nx + k;
-        a.external.segment<2>(2 * n) += s.wx[k] * s.wy[j] * f;
+        into.segment<2>(2 * n) += s.wx[k] * s.wy[j] * f;
       }
   };
-  if (scene.solver.gravity.squaredNorm() > 0.0)
-    for (std::size_t i = 0; i < particles_.size(); ++i) spread(a.geometry.stencils[i], particles_.mass[i] * scene.solver.gravity);
-  for (std::size_t l = 0; l < scene.loads.size(); ++l) {
-    const Load& load = scene.loads[l];
-    const Vec2 each = load.force * load.history(t1) / static_cast<double>(loads_[l].members.size());
-    for (const std::int32_t m : loads_[l].members) {
-      if (load.target == LoadTarget::Nodes)
-        a.external.segment<2>(2 * static_cast<Eigen::Index>(m)) += each;
-      else
-        spread(a.geometry.stencils[static_cast<std::size_t>(m)], each);
+  for (const auto& [into, t] : {std::pair<Eigen::VectorXd*, double>{&a.externalStart, t0}, {&a.external, t1}}) {
+    into->setZero(components);
+    if (scene.solver.gravity.squaredNorm() > 0.0)
+      for (std::size_t i = 0; i < particles_.size(); ++i) spread(*into, geometry_.stencils[i], particles_.mass[i] * scene.solver.gravity);
+    for (std::size_t l = 0; l < scene.loads.size(); ++l) {
+      const Load& load = scene.loads[l];
+      const Vec2 each = load.force * load.history(t) / static_cast<double>(loads_[l].members.size());
+      for (const std::int32_t m : loads_[l].members) {
+        if (load.target == LoadTarget::Nodes)
+          into->segment<2>(2 * static_cast<Eigen::Index>(m)) += each;
+        else
+          spread(*into, geometry_.stencils[static_cast<std::size_t>(m)], each);
+      }
     }
   }
   return true;
+}
+
+Eigen::SparseMatrix<double> ImplicitSolver::tangentAtStart(double dt) {
+  Attempt a;
+  if (!prepare(dt, nullptr, a)) return {};
+  evaluateTrial(setup_, particles_, geometry_, Eigen::VectorXd::Zero(a.du.size()), true, a.snapBack, a.trial);
+  return a.trial.tangent;
+}
+
+bool ImplicitSolver::factorize(const Eigen::SparseMatrix<double>& k, Attempt& a) {
+  const double start = omp_get_wtime();
+  if (luPattern_ != geometry_.patternBuilds) lu_.forgetPattern();
+  const bool ok = lu_.factorize(k);
+  luPattern_ = ok ? geometry_.patternBuilds : -1;
+  a.report.linearSolveSeconds += omp_get_wtime() - start;
+  a.report.factorizations++;
+  return ok;
+}
+
+Eigen::VectorXd ImplicitSolver::solve(const Eigen::VectorXd& b, Attempt& a) {
+  const double start = omp_get_wtime();
+  Eigen::VectorXd x = lu_.solve(b);
+  a.report.linearSolveSeconds += omp_get_wtime() - start;
+  return x;
 }
 
 bool ImplicitSolver::attempt(double dt, Attempt& a) {
   if (!prepare(dt, nullptr, a)) return false;
   const auto components = a.du.size();
   // Newton on the unknowns.
-  const DofMap& dofs = a.geometry.dofs;
+  const DofMap& dofs = geometry_.dofs;
   const int n = dofs.unknowns();
-  LinearSolver lu(options_.linearSolver);
   const auto residualOf = [&](const Trial& t, double& relative) {
     Eigen::VectorXd r(n);
-    double reference = 0.0;
     for (int u = 0; u < n; ++u) r[u] = a.external[dofs.component[static_cast<std::size_t>(u)]] - t.internalForce[dofs.component[static_cast<std::size_t>(u)]];
-    reference = std::max({a.external.norm(), t.internalForce.norm(), 1e-300});
-    relative = r.norm() / reference;
+    relative = r.norm() / std::max({a.external.norm(), t.internalForce.norm(), 1e-300});
     return r;
   };
   // The predictor: linearised at the step's start (du = 0), loaded by the prescribed increments
   // through the coupling K_fp: K_ff du_f = (f_ext - f_int)_f - (K du_p)_f. Starting Newton at the
   // prescribed increments alone would strain the boundary's layer of particles with all of them.
-  {
+  // K_ff is the last factorisation while the unknowns are those it was made for.
+  if (n > 0) {
     const Eigen::VectorXd prescribedIncrements = a.du;
     Trial start;
-    evaluateTrial(setup_, particles_, a.geometry, Eigen::VectorXd::Zero(components), true, a.snapBack, start,
-                  &prescribedIncrements);
-    if (start.failed != SIZE_MAX) {
-      return a.failInMaterial(0, start, setup_, particles_);
-    }
+    evaluateTrial(setup_, particles_, geometry_, Eigen::VectorXd::Zero(components), false, a.snapBack, start, &prescribedIncrements);
+    if (start.failed != SIZE_MAX) return a.failInMaterial(0, start, setup_, particles_);
+    a.startForce = start.internalForce;
     Eigen::VectorXd rhs(n);
     for (int u = 0; u < n; ++u) {
       const auto c = dofs.component[static_cast<std::size_t>(u)];
       rhs[u] = a.external[c] - start.internalForce[c] - start.tangentTimesDirection[c];
     }
-    if (n > 0) {
-      const double t0 = omp_get_wtime();
-      const bool factored = lu.factorize(start.tangent);
-      Eigen::VectorXd delta;
-      if (factored) delta = lu.solve(rhs);
-      a.report.linearSolveSeconds += omp_get_wtime() - t0;
-      if (!factored || !delta.allFinite()) {
-        return a.fail(0, 0.0, "the tangent at the step's start is singular");
-      }
-      for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] = delta[u];
+    if (luPattern_ != geometry_.patternBuilds || options_.reuseRatio <= 0.0) {
+      assembleTangent(setup_, particles_, geometry_, start);
+      if (!factorize(start.tangent, a)) return a.fail(0, 0.0, "the tangent at the step's start is singular");
     }
+    const Eigen::VectorXd delta = solve(rhs, a);
+    if (!delta.allFinite()) return a.fail(0, 0.0, "the tangent at the step's start is singular");
+    for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] = delta[u];
   }
-  evaluateTrial(setup_, particles_, a.geometry, a.du, true, a.snapBack, a.trial);
+  evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, a.trial);
+  // A predictor far past the onset limit is not worth converging: the piece is cut at once.
+  if (a.snapBack != SnapBackPolicy::Release && a.trial.failed == SIZE_MAX && a.trial.onsetOvershoot > 1.5 * options_.onsetOvershoot)
+    return a.fail(0, 0.0, "the predictor carried a point past its onset by " + std::to_string(a.trial.onsetOvershoot) + " of its strength");
+  bool refactor = options_.reuseRatio <= 0.0;
   for (int it = 0;; ++it) {
-    if (a.trial.failed != SIZE_MAX) {
-      return a.failInMaterial(it, a.trial, setup_, particles_);
-    }
+    if (a.trial.failed != SIZE_MAX) return a.failInMaterial(it, a.trial, setup_, particles_);
     double relative = 0.0;
     const Eigen::VectorXd r = residualOf(a.trial, relative);
     a.report.totalIterations++;
@@ -189,17 +216,13 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       a.report.residual = relative;
       return true;
     }
-    if (it >= options_.maxIterations) {
-      return a.fail(it, relative, "Newton did not converge");
+    if (it >= options_.maxIterations) return a.fail(it, relative, "Newton did not converge");
+    if (refactor || luPattern_ != geometry_.patternBuilds) {
+      assembleTangent(setup_, particles_, geometry_, a.trial);
+      if (!factorize(a.trial.tangent, a)) return a.fail(it, relative, "the tangent is singular");
     }
-    const double start = omp_get_wtime();
-    const bool factored = lu.factorize(a.trial.tangent);
-    Eigen::VectorXd delta;
-    if (factored) delta = lu.solve(r);
-    a.report.linearSolveSeconds += omp_get_wtime() - start;
-    if (!factored || !delta.allFinite()) {
-      return a.fail(it, relative, "the tangent is singular");
-    }
+    const Eigen::VectorXd delta = solve(r, a);
+    if (!delta.allFinite()) return a.fail(it, relative, "the tangent is singular");
     // Backtracking line search on |r|: the full step, then halves, the best kept.
     Eigen::VectorXd full = Eigen::VectorXd::Zero(a.du.size());
     for (int u = 0; u < n; ++u) full[dofs.component[static_cast<std::size_t>(u)]] = delta[u];
@@ -209,19 +232,19 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
     for (int tries = 0; tries < 6; ++tries, alpha *= 0.5) {
       Trial t;
       const Eigen::VectorXd du = a.du + alpha * full;
-      evaluateTrial(setup_, particles_, a.geometry, du, true, a.snapBack, t);
+      evaluateTrial(setup_, particles_, geometry_, du, false, a.snapBack, t);
       if (t.failed != SIZE_MAX) continue;
       double rel = 0.0;
       const double norm = residualOf(t, rel).norm();
-      if (norm < bestNorm) {
-        bestNorm = norm, best = std::move(t), bestDu = du;
-      }
+      if (norm < bestNorm) bestNorm = norm, best = std::move(t), bestDu = du;
       if (norm <= (1.0 - 1e-4 * alpha) * r.norm()) break;
     }
     if (!std::isfinite(bestNorm)) {  // every length failed in the material: report the full step's failure
-      evaluateTrial(setup_, particles_, a.geometry, a.du + full, true, a.snapBack, a.trial);
+      evaluateTrial(setup_, particles_, geometry_, a.du + full, false, a.snapBack, a.trial);
       continue;
     }
+    // A stale factorisation that no longer contracts the residual well enough is renewed.
+    refactor = options_.reuseRatio <= 0.0 || bestNorm > options_.reuseRatio * r.norm();
     a.du = std::move(bestDu);
     a.trial = std::move(best);
   }
@@ -230,25 +253,25 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
 bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau, Attempt& a) {
   if (!prepare(0.0, &control, a)) return false;
   const auto components = a.du.size();
-  const DofMap& dofs = a.geometry.dofs;
+  const DofMap& dofs = geometry_.dofs;
   const int n = dofs.unknowns();
   // The control's coefficients per node component.
   Eigen::VectorXd c = Eigen::VectorXd::Zero(components);
   for (const auto& [k, coefficient] : control.terms) c[k] += coefficient;
   const double cPrescribed = c.dot(a.direction);  // d tau per unit load factor through the driven components
-  LinearSolver lu(options_.linearSolver);
-  double dLambda = 0.0;
+  double dLambda = 0.0, previous = INFINITY;
+  bool refactor = options_.reuseRatio <= 0.0;
   // Newton on (du_f, d lambda) with the bordered system, from du = 0 (the first iteration is the
   // predictor): K_ff d_f + (K u^)_f d_lambda = r_f and c . (d_f + d_lambda u^) = d tau - c . du,
   // solved with one factorisation: d_f = a + d_lambda b, a = K_ff^-1 r_f, b = -K_ff^-1 (K u^)_f.
+  // K_ff is refactorised as in attempt().
   for (int it = 0;; ++it) {
     Trial& t = a.trial;
     const Eigen::VectorXd du = a.du + dLambda * a.direction;
-    evaluateTrial(setup_, particles_, a.geometry, du, true, a.snapBack, t, &a.direction);
+    evaluateTrial(setup_, particles_, geometry_, du, false, a.snapBack, t, &a.direction);
     a.report.totalIterations++;
-    if (t.failed != SIZE_MAX) {
-      return a.failInMaterial(it, t, setup_, particles_);
-    }
+    if (t.failed != SIZE_MAX) return a.failInMaterial(it, t, setup_, particles_);
+    if (it == 0) a.startForce = t.internalForce;  // du = 0
     Eigen::VectorXd r(n), ku(n);
     for (int u = 0; u < n; ++u) {
       const auto k = dofs.component[static_cast<std::size_t>(u)];
@@ -264,26 +287,24 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
       a.dLambda = dLambda;
       return true;
     }
-    if (it >= options_.maxIterations) {
-      return a.fail(it, relative, "Newton did not converge");
+    if (it >= options_.maxIterations) return a.fail(it, relative, "Newton did not converge");
+    if (it > 0 && r.norm() > options_.reuseRatio * previous) refactor = true;
+    previous = r.norm();
+    if (refactor || luPattern_ != geometry_.patternBuilds) {
+      assembleTangent(setup_, particles_, geometry_, t);
+      if (!factorize(t.tangent, a)) return a.fail(it, relative, "the tangent is singular");
+      refactor = options_.reuseRatio <= 0.0;
     }
-    const double start = omp_get_wtime();
-    const bool factored = lu.factorize(t.tangent);
-    Eigen::VectorXd x, y;
-    if (factored) x = lu.solve(r), y = -lu.solve(ku);
-    a.report.linearSolveSeconds += omp_get_wtime() - start;
-    if (!factored || !x.allFinite() || !y.allFinite()) {
-      return a.fail(it, relative, "the tangent is singular");
-    }
+    const Eigen::VectorXd x = solve(r, a), y = -solve(ku, a);
+    if (!x.allFinite() || !y.allFinite()) return a.fail(it, relative, "the tangent is singular");
     double cx = 0.0, cy = 0.0;
     for (int u = 0; u < n; ++u) {
       const double ck = c[dofs.component[static_cast<std::size_t>(u)]];
       cx += ck * x[u], cy += ck * y[u];
     }
     const double denominator = cy + cPrescribed;
-    if (!(std::abs(denominator) > 0.0)) {
+    if (!(std::abs(denominator) > 0.0))
       return a.fail(it, relative, "the control does not see the driven conditions (c . du does not change with the load factor)");
-    }
     const double deltaLambda = (g - cx) / denominator;
     for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] += x[u] + deltaLambda * y[u];
     dLambda += deltaLambda;
@@ -295,12 +316,14 @@ void ImplicitSolver::commit(const Attempt& a, double dt) {
   const Trial& t = a.trial;
   Particles& p = particles_;
   const int nx = scene.grid.nodesX(), support = supportSize(scene.solver.shapeFunction);
+  double internal = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const Stencil& s = a.geometry.stencils[i];
+    const Stencil& s = geometry_.stencils[i];
     Vec2 move = Vec2::Zero();
     for (int j = 0; j < support; ++j)
       for (int k = 0; k < support; ++k) move += s.wx[k] * s.wy[j] * a.du.segment<2>(2 * static_cast<Eigen::Index>(s.base + j * nx + k));
     p.position[i] += move;
+    internal += 0.5 * p.volume[i] * (p.stress[i] + t.stress[i]).dot(t.strain[i] - p.strain[i]);
     p.strain[i] = t.strain[i];
     p.stress[i] = t.stress[i];
     if (t.band[i]) {
@@ -342,40 +365,66 @@ void ImplicitSolver::commit(const Attempt& a, double dt) {
       if (k.kind == Prescribed::Velocity) state.displacement[d] += dt * k.history(time_ + dt);
     }
   }
-  // External work, trapezoidal: at equilibrium the forces the loads and constraints apply are
-  // the internal forces, node component by node component.
-  totals_.externalWork += 0.5 * (t.internalForce.dot(a.du) + (previousForce_.size() == t.internalForce.size() ? previousForce_.dot(a.du) : 0.0));
-  previousForce_ = t.internalForce;
+  // The works of the step, trapezoidal (docs/implicit.md, "Energies"): the external work of the
+  // forces the loads and the constraints apply (at a prescribed component the internal force, at a
+  // free one the load), and the internal work sum_p V (sigma_n + sigma_n+1)/2 : d eps_p.
+  // They differ by the work of the residual: the check of equilibrium in energy.
+  double external = 0.0;
+  for (Eigen::Index k = 0; k < a.du.size(); ++k) {
+    if (a.du[k] == 0.0) continue;
+    const bool held = geometry_.dofs.unknownOf[static_cast<std::size_t>(k)] == DofMap::kPrescribed;
+    external += 0.5 * (held ? a.startForce[k] + t.internalForce[k] : a.externalStart[k] + a.external[k]) * a.du[k];
+  }
+  totals_.externalWork += external;
+  internalWork_ += internal;
   totals_.released += t.released;
   lambda_ += a.dLambda;
   time_ += dt;
   ++steps_;
 }
 
-template <class Try>
-ImplicitStepReport ImplicitSolver::halving(double size, Try&& tryPiece) {
+ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, double largest, double remaining) {
   ImplicitStepReport total;
-  double done = 0.0, piece = size;
-  int cuts = 0;
-  while (std::abs(done) < std::abs(size) * (1.0 - 1e-12)) {
-    piece = std::abs(piece) < std::abs(size - done) ? piece : size - done;
+  const double smallest = std::abs(largest) * std::ldexp(1.0, -options_.maxCuts) * (1.0 - 1e-9);
+  double piece = nextPiece_ > 0.0 ? std::min(nextPiece_, std::abs(largest)) : std::abs(largest);
+  piece = std::copysign(std::min(piece, std::abs(remaining)), largest);
+  // The last piece before `remaining` ends takes what is left when that is at most 1.5 pieces.
+  if (std::abs(remaining) <= 1.5 * std::abs(piece)) piece = remaining;
+  for (int cuts = 0;; ++cuts) {
     Attempt a;
-    const bool finest = cuts >= options_.maxCuts;
+    const bool finest = std::abs(piece) <= smallest || cuts > 2 * options_.maxCuts;
     a.snapBack = finest ? SnapBackPolicy::Release : SnapBackPolicy::Stop;  // a persisting snap-back is released
-    const bool ok = tryPiece(piece, a);
+    bool ok = control ? attemptIndirect(*control, piece, a) : attempt(piece, a);
+    // A piece that carries a point far past its onset is cut (docs/implicit.md, "Load steps").
+    if (ok && !finest && a.trial.onsetOvershoot > options_.onsetOvershoot)
+      ok = a.fail(a.report.iterations, a.report.residual,
+                  "a point passed its onset by " + std::to_string(a.trial.onsetOvershoot) + " of its strength");
     total.totalIterations += a.report.totalIterations;
+    total.factorizations += a.report.factorizations;
     total.linearSolveSeconds += a.report.linearSolveSeconds;
     if (ok) {
-      done += piece;
-      total.iterations = std::max(total.iterations, a.report.iterations);
-      total.residual = std::max(total.residual, a.report.residual);
-      total.released += a.trial.released;
-      continue;
+      commit(a, control ? 0.0 : piece);
+      checkBalance();
+      total.size = piece;
+      total.cuts = cuts;
+      total.iterations = a.report.iterations;
+      total.residual = a.report.residual;
+      total.released = a.trial.released;
+      total.onsetOvershoot = a.trial.onsetOvershoot;
+      // The next piece: longer after an easy step, shorter after a hard one.
+      double grow = a.report.iterations <= options_.easyIterations ? 2.0
+                    : a.report.iterations >= options_.hardIterations ? 0.5 : 1.0;
+      if (a.trial.onsetOvershoot > 0.0)  // aim at 0.6 of the overshoot limit
+        grow = std::min(grow, std::max(0.5, 0.6 * options_.onsetOvershoot / a.trial.onsetOvershoot));
+      nextPiece_ = std::abs(piece) * grow;
+      return total;
     }
     if (!finest) {
-      piece *= 0.5;
-      ++cuts;
-      total.cuts = cuts;
+      // The overshoot grows about linearly with the piece: cut to where it would meet the limit.
+      const double overshootCut = a.trial.onsetOvershoot > options_.onsetOvershoot && a.why.find("onset") != std::string::npos
+                                      ? std::max(0.1, 0.8 * options_.onsetOvershoot / a.trial.onsetOvershoot)
+                                      : 0.5;
+      piece *= std::min(0.5, overshootCut);
       continue;
     }
     std::ostringstream msg;
@@ -391,23 +440,47 @@ ImplicitStepReport ImplicitSolver::halving(double size, Try&& tryPiece) {
                           steps_ + 1, a.failedParticle == SIZE_MAX ? 0 : a.failedParticle, where, msg.str(),
                           a.trial.failure.status, a.failedResidual);
   }
+}
+
+void ImplicitSolver::checkBalance() const {
+  const double scale = std::max({std::abs(totals_.externalWork), std::abs(internalWork_), 1e-9});
+  const double gap = std::abs(totals_.externalWork - internalWork_);
+  if (gap <= kBalanceTolerance * scale) return;
+  std::ostringstream msg;
+  msg << "implicit step " << steps_ << " (t = " << time_ << " s, load factor " << lambda_ << "): the external work "
+      << totals_.externalWork << " N mm and the internal work " << internalWork_ << " N mm differ by " << gap / scale
+      << " of the work (allowed " << kBalanceTolerance << "): the steps are not in equilibrium";
+  throw SimulationError(FailureKind::MaterialFailure, steps_, 0, Vec2::Zero(), msg.str(), UpdateStatus::Converged, gap / scale);
+}
+
+ImplicitStepReport ImplicitSolver::advance(double largest, double remaining) { return advance(nullptr, largest, remaining); }
+
+ImplicitStepReport ImplicitSolver::advance(const IndirectControl& control, double largest, double remaining) {
+  return advance(&control, largest, remaining);
+}
+
+// A whole step of `size` in adaptive pieces: the reports summed.
+ImplicitStepReport ImplicitSolver::stepInPieces(const IndirectControl* control, double size) {
+  ImplicitStepReport total;
+  double done = 0.0;
+  while (std::abs(done) < std::abs(size) * (1.0 - 1e-12)) {
+    const ImplicitStepReport r = advance(control, size, size - done);
+    done += r.size;
+    total.size += r.size;
+    total.iterations = std::max(total.iterations, r.iterations);
+    total.totalIterations += r.totalIterations;
+    total.factorizations += r.factorizations;
+    total.cuts += r.cuts;
+    total.residual = std::max(total.residual, r.residual);
+    total.released += r.released;
+    total.linearSolveSeconds += r.linearSolveSeconds;
+    total.onsetOvershoot = std::max(total.onsetOvershoot, r.onsetOvershoot);
+  }
   return total;
 }
 
-ImplicitStepReport ImplicitSolver::step(double dt) {
-  return halving(dt, [&](double piece, Attempt& a) {
-    if (!attempt(piece, a)) return false;
-    commit(a, piece);
-    return true;
-  });
-}
+ImplicitStepReport ImplicitSolver::step(double dt) { return stepInPieces(nullptr, dt); }
 
-ImplicitStepReport ImplicitSolver::step(const IndirectControl& control, double dTau) {
-  return halving(dTau, [&](double piece, Attempt& a) {
-    if (!attemptIndirect(control, piece, a)) return false;
-    commit(a, 0.0);
-    return true;
-  });
-}
+ImplicitStepReport ImplicitSolver::step(const IndirectControl& control, double dTau) { return stepInPieces(&control, dTau); }
 
 }  // namespace ecm::mpm

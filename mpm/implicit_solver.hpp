@@ -20,6 +20,17 @@ struct ImplicitOptions {
   int maxIterations = 25;   // Newton iterations per attempt
   int maxCuts = 8;          // halvings of a step before the run fails
   LinearSolverKind linearSolver = available(LinearSolverKind::Umfpack) ? LinearSolverKind::Umfpack : LinearSolverKind::SparseLU;
+  // The factorised tangent is kept while Newton's residual falls by at least this factor per
+  // iteration, and refactorised at the current iterate otherwise (docs/implicit.md, "Fewer
+  // factorisations"); the predictor of a step takes the last factorisation. 0: a factorisation
+  // at every iteration (Newton's method proper).
+  double reuseRatio = 0.1;
+  // Adaptive pieces: a piece converged in at most `easyIterations` Newton iterations doubles the
+  // next one, in at least `hardIterations` halves it; a piece whose trial carries a point past its
+  // onset by more than `onsetOvershoot` of its strength is cut (docs/implicit.md, "Load steps").
+  int easyIterations = 4;
+  int hardIterations = 10;
+  double onsetOvershoot = 0.05;
 };
 
 // Indirect displacement control (docs/implicit.md): the driven conditions' prescribed components
@@ -34,9 +45,12 @@ struct IndirectControl {
 };
 
 struct ImplicitStepReport {
+  double size = 0.0;        // the pseudo-time (or, under indirect control, the d tau) advanced
+  double onsetOvershoot = 0.0;  // the most a point passed its onset by in the step (of its strength)
   int iterations = 0;       // Newton iterations of the converged attempt (all attempts in `total`)
   int totalIterations = 0;
   int cuts = 0;             // halvings needed
+  int factorizations = 0;   // of the tangent, in all attempts
   double residual = 0.0;    // relative, at convergence
   long released = 0;        // snap-backs released at the material level in the step
   double linearSolveSeconds = 0.0;
@@ -53,7 +67,16 @@ class ImplicitSolver {
   // One step of indirect control: the combination grows by dTau (mm), lambda follows; halved as
   // step() halves. The pseudo-time does not move.
   ImplicitStepReport step(const IndirectControl& control, double dTau);
+  // One converged load step of at most `largest` and `remaining` (its size in the report): the
+  // adaptive step of a run. The piece follows the Newton iterations of the last one; a failed
+  // piece is halved, down to largest / 2^maxCuts, where a persisting material snap-back is
+  // released. Throws SimulationError as step() does.
+  ImplicitStepReport advance(double largest, double remaining);
+  ImplicitStepReport advance(const IndirectControl& control, double largest, double remaining);
   double loadFactor() const { return lambda_; }
+  // The tangent over the unknowns of a step of dt from here, at du = 0 (for benchmarks of the
+  // linear solvers); empty if a particle left the grid.
+  Eigen::SparseMatrix<double> tangentAtStart(double dt);
 
   double time() const { return time_; }
   long steps() const { return steps_; }
@@ -61,6 +84,10 @@ class ImplicitSolver {
   const std::vector<ConditionState>& conditions() const { return conditions_; }
   const StepSetup& setup() const { return setup_; }
   Energies energies() const;
+  // The internal work (N mm): sum_p V int sigma : d eps, trapezoidal per step. External work minus
+  // it is the work of the residual forces; internal work minus the strain energy is the work-based
+  // dissipation, which on shear paths differs from the model's f int Y dD (docs/implicit.md).
+  double internalWork() const { return internalWork_; }
   // The particles' displacements from their seeds (mm).
   Vec2 displacement(std::size_t i) const { return particles_.displacement(i); }
 
@@ -70,9 +97,13 @@ class ImplicitSolver {
   bool prepare(double dt, const IndirectControl* control, Attempt& a);
   bool attempt(double dt, Attempt& a);  // Newton over [time_, time_ + dt]; true when converged
   bool attemptIndirect(const IndirectControl& control, double dTau, Attempt& a);
-  template <class Try>
-  ImplicitStepReport halving(double size, Try&& tryPiece);  // the step in pieces, halved on failure
+  ImplicitStepReport advance(const IndirectControl* control, double largest, double remaining);
+  ImplicitStepReport stepInPieces(const IndirectControl* control, double size);
   void commit(const Attempt& a, double dt);
+  // Throws SimulationError when the external and internal works part by more than
+  // kBalanceTolerance of the work (checked after every step).
+  void checkBalance() const;
+  static constexpr double kBalanceTolerance = 1e-2;
 
   StepSetup setup_;
   ImplicitOptions options_;
@@ -80,9 +111,18 @@ class ImplicitSolver {
   std::vector<ConditionState> conditions_;
   std::vector<LoadState> loads_;
   RunTotals totals_;
-  Eigen::VectorXd previousForce_;  // the internal forces of the last converged step (for the work)
+  // Factorises K over the current unknowns into lu_ (false: singular), timing it in `a`.
+  bool factorize(const Eigen::SparseMatrix<double>& k, Attempt& a);
+  Eigen::VectorXd solve(const Eigen::VectorXd& b, Attempt& a);
+
+  LinearSolver lu_;
+  long luPattern_ = -1;    // geometry_.patternBuilds of the factorised tangent (-1: none)
+  StepGeometry geometry_;  // of the committed state after `geometryStep_` steps (-1: none)
+  long geometryStep_ = -1;
+  double internalWork_ = 0.0;  // sum over steps and particles of V (sigma_n + sigma_n+1)/2 : d eps (N mm)
   double time_ = 0.0;
   double lambda_ = 0.0;  // the load factor of indirect control
+  double nextPiece_ = 0.0;  // the adaptive piece (0: the largest)
   long steps_ = 0;
 };
 

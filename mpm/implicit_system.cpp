@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 
 namespace ecm::mpm {
 
@@ -49,18 +50,31 @@ Eigen::Matrix<double, 3, 2> blockB(const ElementNodes& e, int a) {
 
 }  // namespace
 
-bool stepGeometry(const StepSetup& setup, const Particles& p, const std::vector<std::uint8_t>& prescribed,
-                  StepGeometry& g, std::size_t& outside) {
-  const Grid& grid = setup.scene.grid;
-  const ShapeFunction f = setup.scene.solver.shapeFunction;
-  const int support = supportSize(f), nx = grid.nodesX();
-  g.stencilNodes = support * support;
-  g.stencils.resize(p.size());
-  for (std::size_t i = 0; i < p.size(); ++i)
-    if (!computeStencil(f, grid, setup.halfWidth, p.position[i], g.stencils[i])) {
-      outside = i;
-      return false;
+namespace {
+
+// Adds sign V B^T D B of one particle to K's values at its positions `at`.
+void addElement(const ElementNodes& e, double volume, const Tangent& d, const std::int32_t* at, int local, double* values) {
+  for (int a = 0; a < e.count; ++a) {
+    const Eigen::Matrix<double, 2, 3> left = volume * blockB(e, a).transpose() * d;  // V B_a^T D
+    for (int b = 0; b < e.count; ++b) {
+      const Eigen::Matrix2d k = left * blockB(e, b);  // K = V B_a^T D B_b
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c)
+          if (const std::int32_t pos = at[(2 * a + r) * local + 2 * b + c]; pos >= 0) values[pos] += k(r, c);
     }
+  }
+}
+
+// The point's state carries no damage: its tangent is elastic until it cracks.
+bool undamagedAt(const Particles& p, std::size_t i, const Material& m) {
+  if (m.params().model == ModelKind::SmearedCrack) return false;  // its integrity decides: always per trial
+  return p.band[i] < 0 && (p.secondBand.empty() || p.secondBand[i] < 0);
+}
+
+// Numbers the unknowns and builds K's pattern and each particle's positions in it.
+void buildPattern(const Grid& grid, int support, std::size_t particles, const std::vector<std::uint8_t>& prescribed,
+                  StepGeometry& g) {
+  const int nx = grid.nodesX();
   // The unknowns: reached node components in node order, the prescribed ones left out.
   const auto components = static_cast<std::size_t>(2 * grid.nodeCount());
   std::vector<std::uint8_t> reached(components, 0);
@@ -79,10 +93,9 @@ bool stepGeometry(const StepSetup& setup, const Particles& p, const std::vector<
     g.dofs.unknownOf[c] = static_cast<std::int32_t>(g.dofs.component.size());
     g.dofs.component.push_back(static_cast<std::int32_t>(c));
   }
-  // K's pattern and each particle's positions in it.
   const int local = 2 * g.stencilNodes;
   std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(p.size() * static_cast<std::size_t>(local * local));
+  triplets.reserve(particles * static_cast<std::size_t>(local * local));
   const auto unknownAt = [&](const ElementNodes& e, int l) { return g.dofs.unknownOf[2 * static_cast<std::size_t>(e.node[l / 2]) + static_cast<std::size_t>(l % 2)]; };
   for (const Stencil& s : g.stencils) {
     const ElementNodes e = elementNodes(s, nx, support);
@@ -94,10 +107,10 @@ bool stepGeometry(const StepSetup& setup, const Particles& p, const std::vector<
   g.pattern.resize(n, n);
   g.pattern.setFromTriplets(triplets.begin(), triplets.end());
   g.pattern.makeCompressed();
-  g.entryOf.assign(p.size() * static_cast<std::size_t>(local * local), -1);
+  g.entryOf.assign(particles * static_cast<std::size_t>(local * local), -1);
   const int* outer = g.pattern.outerIndexPtr();
   const int* inner = g.pattern.innerIndexPtr();
-  for (std::size_t i = 0; i < p.size(); ++i) {
+  for (std::size_t i = 0; i < particles; ++i) {
     const ElementNodes e = elementNodes(g.stencils[i], nx, support);
     for (int r = 0; r < local; ++r)
       for (int c = 0; c < local; ++c) {
@@ -107,12 +120,47 @@ bool stepGeometry(const StepSetup& setup, const Particles& p, const std::vector<
         g.entryOf[i * static_cast<std::size_t>(local * local) + static_cast<std::size_t>(r * local + c)] = static_cast<std::int32_t>(at - inner);
       }
   }
+  g.prescribed = prescribed;
+  ++g.patternBuilds;
+}
+
+}  // namespace
+
+bool stepGeometry(const StepSetup& setup, const Particles& p, const std::vector<std::uint8_t>& prescribed,
+                  StepGeometry& g, std::size_t& outside) {
+  const Grid& grid = setup.scene.grid;
+  const ShapeFunction f = setup.scene.solver.shapeFunction;
+  const int support = supportSize(f), nx = grid.nodesX();
+  // The pattern is kept when every stencil starts at the same node as before.
+  bool samePattern = g.stencils.size() == p.size() && g.stencilNodes == support * support && g.prescribed == prescribed;
+  g.stencilNodes = support * support;
+  g.stencils.resize(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::int32_t before = g.stencils[i].base;
+    if (!computeStencil(f, grid, setup.halfWidth, p.position[i], g.stencils[i])) {
+      outside = i;
+      g.stencils.clear();  // no pattern to keep
+      return false;
+    }
+    samePattern = samePattern && g.stencils[i].base == before;
+  }
+  if (!samePattern) buildPattern(grid, support, p.size(), prescribed, g);
+  // K's elastic part, over the points undamaged at the step's start.
+  const int local = 2 * g.stencilNodes;
+  g.undamaged.resize(p.size());
+  g.elasticValues.setZero(g.pattern.nonZeros());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Material& m = setup.materials[p.material[i]];
+    g.undamaged[i] = undamagedAt(p, i, m) ? 1 : 0;
+    if (g.undamaged[i])
+      addElement(elementNodes(g.stencils[i], nx, support), p.volume[i], m.stiffness(),
+                 g.entryOf.data() + i * static_cast<std::size_t>(local * local), local, g.elasticValues.data());
+  }
   return true;
 }
 
 void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometry& g, const Eigen::VectorXd& du,
                    bool withTangent, SnapBackPolicy snapBack, Trial& t, const Eigen::VectorXd* direction) {
-  withTangent = withTangent || direction;
   const std::size_t count = p.size();
   const int nx = setup.scene.grid.nodesX(), support = supportSize(setup.scene.solver.shapeFunction);
   t.strain.resize(count);
@@ -120,16 +168,19 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
   t.band.assign(count, std::nullopt);
   t.secondBand.assign(count, std::nullopt);
   t.dissipation.assign(count, 0.0);
+  t.tangents.resize(count);
+  t.elastic.assign(count, 0);
   t.integrity = p.integrity;
   t.failed = SIZE_MAX;
-  std::vector<Tangent> tangents(withTangent ? count : 0);
-  UpdateOptions options(snapBack, withTangent);
+  t.tangent.resize(0, 0);
+  UpdateOptions options(snapBack, true);
   options.substepLevels = setup.scene.solver.substepLevels;
   long released = 0;
+  double overshoot = 0.0;
   std::size_t failed = SIZE_MAX;
   UpdateResult failure;
   // The updates: independent per point, in parallel.
-#pragma omp parallel for num_threads(setup.threads) schedule(dynamic, 256) reduction(+ : released)
+#pragma omp parallel for num_threads(setup.threads) schedule(dynamic, 256) reduction(+ : released) reduction(max : overshoot)
   for (std::size_t i = 0; i < count; ++i) {
     const Material& m = setup.materials[p.material[i]];
     const ElementNodes e = elementNodes(g.stencils[i], nx, support);
@@ -138,7 +189,8 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
     const std::int32_t b1 = p.band[i], b2 = p.secondBand.empty() ? -1 : p.secondBand[i];
     if (b1 < 0 && b2 < 0 && m.closedFormStress(d, false, strain, t.stress[i])) {
       t.strain[i] = strain;
-      if (withTangent) tangents[i] = m.stiffness();
+      t.tangents[i] = m.stiffness();
+      t.elastic[i] = 1;
       continue;
     }
     std::optional<BandState> band, second;
@@ -156,6 +208,10 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
       }
       continue;
     }
+    if (opened.first && m.enriched()) {  // how far past onset the elastic trial stress goes
+      const TwoPhasePoint& e2 = *m.enriched();
+      overshoot = std::max(overshoot, std::sqrt(e2.intactDrivingForce(p.strain[i] + d) / e2.bandLaw().onsetDrivingForce()) - 1.0);
+    }
     if (opened.first) band = opened.first;
     if (opened.second) second = opened.second;
     t.strain[i] = strain;
@@ -164,18 +220,17 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
     t.secondBand[i] = second;
     t.dissipation[i] = r.dissipation;
     released += r.released ? 1 : 0;
-    if (withTangent) tangents[i] = r.tangent;
+    t.tangents[i] = r.tangent;
+    t.elastic[i] = g.undamaged[i] && !band && !second && r.tangent == m.stiffness() ? 1 : 0;
   }
   t.released = released;
+  t.onsetOvershoot = overshoot;
   t.failed = failed;
   t.failure = failure;
   if (failed != SIZE_MAX) return;
   // The sums, particle by particle in index order.
   t.internalForce.setZero(2 * setup.scene.grid.nodeCount());
   if (direction) t.tangentTimesDirection.setZero(2 * setup.scene.grid.nodeCount());
-  if (withTangent) t.tangent = g.pattern;
-  double* values = withTangent ? t.tangent.valuePtr() : nullptr;
-  const int local = 2 * g.stencilNodes;
   for (std::size_t i = 0; i < count; ++i) {
     const ElementNodes e = elementNodes(g.stencils[i], nx, support);
     const double v = p.volume[i];
@@ -184,24 +239,30 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
       t.internalForce[2 * e.node[a]] += v * (e.gx[a] * s[0] + e.gy[a] * s[2]);
       t.internalForce[2 * e.node[a] + 1] += v * (e.gy[a] * s[1] + e.gx[a] * s[2]);
     }
-    if (!withTangent) continue;
     if (direction) {  // V B^T D (B direction)
-      const Voigt s2 = v * (tangents[i] * strainIncrement(e, *direction));
+      const Voigt s2 = v * (t.tangents[i] * strainIncrement(e, *direction));
       for (int a = 0; a < e.count; ++a) {
         t.tangentTimesDirection[2 * e.node[a]] += e.gx[a] * s2[0] + e.gy[a] * s2[2];
         t.tangentTimesDirection[2 * e.node[a] + 1] += e.gy[a] * s2[1] + e.gx[a] * s2[2];
       }
     }
-    const std::int32_t* at = g.entryOf.data() + i * static_cast<std::size_t>(local * local);
-    for (int a = 0; a < e.count; ++a) {
-      const Eigen::Matrix<double, 2, 3> left = v * blockB(e, a).transpose() * tangents[i];  // V B_a^T D
-      for (int b = 0; b < e.count; ++b) {
-        const Eigen::Matrix2d k = left * blockB(e, b);  // K = V B_a^T D B_b
-        for (int r = 0; r < 2; ++r)
-          for (int c = 0; c < 2; ++c)
-            if (const std::int32_t pos = at[(2 * a + r) * local + 2 * b + c]; pos >= 0) values[pos] += k(r, c);
-      }
-    }
+  }
+  if (withTangent) assembleTangent(setup, p, g, t);
+}
+
+void assembleTangent(const StepSetup& setup, const Particles& p, const StepGeometry& g, Trial& t) {
+  const int nx = setup.scene.grid.nodesX(), support = supportSize(setup.scene.solver.shapeFunction);
+  const int local = 2 * g.stencilNodes;
+  t.tangent = g.pattern;
+  double* values = t.tangent.valuePtr();
+  std::copy(g.elasticValues.data(), g.elasticValues.data() + g.elasticValues.size(), values);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (t.elastic[i]) continue;
+    const Material& m = setup.materials[p.material[i]];
+    // An undamaged point is in the elastic part already: add what its trial changes.
+    const Tangent d = g.undamaged[i] ? Tangent(t.tangents[i] - m.stiffness()) : t.tangents[i];
+    addElement(elementNodes(g.stencils[i], nx, support), p.volume[i], d, g.entryOf.data() + i * static_cast<std::size_t>(local * local), local,
+               values);
   }
 }
 

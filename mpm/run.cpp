@@ -24,13 +24,6 @@ namespace ecm::mpm {
 
 namespace {
 
-bool driven(const NodeCondition& c) {
-  if (c.field) return true;
-  for (const auto& k : c.component)
-    if (k.kind == Prescribed::Velocity || k.kind == Prescribed::Displacement) return true;
-  return false;
-}
-
 // The component a driven condition loads along (the first prescribed one), for plots and peaks.
 int drivenComponent(const NodeCondition& c) {
   return (c.component[1].kind == Prescribed::Velocity || c.component[1].kind == Prescribed::Displacement) &&
@@ -61,7 +54,7 @@ void plotLoadDisplacement(const Scene& scene, const std::filesystem::path& dir) 
   const int base = 3;  // time, step, then 4 columns per condition (1-based gnuplot columns)
   for (std::size_t i = 0; i < scene.conditions.size(); ++i) {
     const auto& c = scene.conditions[i];
-    if (!driven(c) || c.field) continue;
+    if (!isDriven(c) || c.field) continue;
     const int d = drivenComponent(c);
     const int col = base + 4 * static_cast<int>(i);
     spec.xLabel = c.name + (d ? " u_y" : " u_x") + " (mm)";
@@ -175,7 +168,7 @@ class Run {
       watched_ = findCondition(scene.conditions, scene.stopWhen->condition).value();  // validated
       watchedComponent_ = drivenComponent(scene.conditions.at(watched_));
     }
-    for (const auto& c : scene.conditions) anyDriven_ = anyDriven_ || driven(c);
+    for (const auto& c : scene.conditions) anyDriven_ = anyDriven_ || isDriven(c);
   }
 
   RunResult execute() {
@@ -265,7 +258,7 @@ class Run {
   // The peak of the driven conditions' reactions (all conditions' if none is driven) and loads.
   void trackPeak() {
     for (std::size_t i = 0; i < scene_.conditions.size(); ++i)
-      if (driven(scene_.conditions[i]) || !anyDriven_)
+      if (isDriven(scene_.conditions[i]) || !anyDriven_)
         result_.peakLoad = std::max(result_.peakLoad, solver_.conditions()[i].reaction.norm());
     for (const auto& l : solver_.loads()) result_.peakLoad = std::max(result_.peakLoad, l.applied.norm());
   }

@@ -2,7 +2,7 @@
 # Installs the Debian 12 packages ecm needs, only those that are missing (idempotent, quiet).
 set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libgsl-dev libyaml-cpp-dev
-          libgtest-dev googletest libbenchmark-dev gnuplot-nox libcli11-dev nlohmann-json3-dev libsuitesparse-dev
+          libgtest-dev googletest libbenchmark-dev gnuplot-nox libcli11-dev nlohmann-json3-dev libsuitesparse-dev libopenblas0-serial
           python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib)
 missing=()
 for p in "${packages[@]}"; do
