@@ -66,11 +66,13 @@ BENCHMARK(BM_SparseLUAmd)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 #ifdef ECM_HAVE_UMFPACK
 // range(1): 0 UMFPACK's automatic strategy, 1 its symmetric strategy (AMD on K + K^T, diagonal
-// pivots preferred: the tangent is structurally symmetric).
+// pivots preferred: the tangent is structurally symmetric), 2 the symmetric strategy with METIS's
+// nested dissection instead of AMD.
 void BM_Umfpack(benchmark::State& state) {
   const Matrix& k = denTangent(static_cast<int>(state.range(0)));
   Eigen::UmfPackLU<Matrix> lu;
-  if (state.range(1) == 1) lu.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
+  if (state.range(1) >= 1) lu.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
+  if (state.range(1) == 2) lu.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_METIS;
   lu.analyzePattern(k);
   for (auto _ : state) {
     lu.factorize(k);
@@ -78,7 +80,7 @@ void BM_Umfpack(benchmark::State& state) {
   }
   state.counters["unknowns"] = static_cast<double>(k.rows());
 }
-BENCHMARK(BM_Umfpack)->Args({0, 0})->Args({0, 1})->Args({1, 0})->Args({1, 1})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Umfpack)->Args({0, 0})->Args({0, 1})->Args({0, 2})->Args({1, 0})->Args({1, 1})->Args({1, 2})->Unit(benchmark::kMillisecond);
 
 void BM_UmfpackSolve(benchmark::State& state) {
   const Matrix& k = denTangent(static_cast<int>(state.range(0)));

@@ -14,11 +14,17 @@
 #include "io/output_error.hpp"
 #include "io/progress.hpp"
 #include "mpm/errors.hpp"
+#include "mpm/implicit_checkpoint.hpp"
 #include "mpm/implicit_solver.hpp"
+#include "mpm/vtu_writer.hpp"
 
 namespace ecm::mpm {
 
 namespace {
+
+using WallClock = std::chrono::steady_clock;
+
+double secondsSince(WallClock::time_point t) { return std::chrono::duration<double>(WallClock::now() - t).count(); }
 
 // The scene's indirect control in node components: each term on the grid node nearest its point.
 IndirectControl indirectControl(const Scene& scene) {
@@ -35,133 +41,276 @@ IndirectControl indirectControl(const Scene& scene) {
   return c;
 }
 
-}  // namespace
+ImplicitOptions solverOptions(const ImplicitSettings& s) {
+  ImplicitOptions o;
+  o.tolerance = s.tolerance;
+  o.maxIterations = s.maxIterations;
+  o.maxCuts = s.maxHalvings;
+  o.linearSolver = s.umfpack ? LinearSolverKind::Umfpack : LinearSolverKind::SparseLU;
+  return o;
+}
 
-RunResult runImplicitScene(const Scene& scene, const RunOptions& options) {
-  if (options.restart) throw std::invalid_argument("implicit_static runs have no checkpoints yet: there is nothing to restart");
-  const auto start = std::chrono::steady_clock::now();
-  const ImplicitSettings& settings = *scene.solver.implicit;
-  io::prepareOutputDir(options.outputDir);
-  ImplicitSolver solver(scene, options.threads,
-                        {settings.tolerance, settings.maxIterations, settings.maxHalvings,
-                         settings.umfpack ? LinearSolverKind::Umfpack : LinearSolverKind::SparseLU});
-  RunResult result;
-  result.particles = solver.particles().size();
-
+std::vector<std::string> implicitColumns(const Scene& scene) {
   std::vector<std::string> columns = historyColumns(scene);
   for (const char* c : {"load_factor", "newton_iterations", "halvings", "snapback_releases", "load_step", "onset_overshoot",
                         "internal_work_Nmm", "work_dissipated_Nmm"})
     columns.emplace_back(c);
-  io::CsvWriter history(options.outputDir / "history.csv", columns);
-  long iterations = 0, halvings = 0, released = 0, factorizations = 0;
-  int mostIterations = 0;
-  double linearSolve = 0.0;
-  const auto row = [&](const ImplicitStepReport& r) {
-    std::vector<double> v{solver.time(), static_cast<double>(solver.steps())};
-    for (const ConditionState& c : solver.conditions()) v.insert(v.end(), {c.displacement[0], c.displacement[1], c.reaction[0], c.reaction[1]});
-    for (const Load& l : scene.loads) {
-      const Vec2 f = l.force * l.history(solver.time());
-      v.insert(v.end(), {f[0], f[1]});
-    }
-    const Energies e = solver.energies();
-    long cracked = 0;
-    for (const auto b : solver.particles().band) cracked += b >= 0 ? 1 : 0;
-    v.insert(v.end(), {0.0, e.strain, e.externalWork, e.dissipated, 0.0, static_cast<double>(cracked), solver.loadFactor(),
-                       static_cast<double>(r.totalIterations), static_cast<double>(r.cuts), static_cast<double>(r.released), r.size,
-                       r.onsetOvershoot, solver.internalWork(), solver.internalWork() - e.strain});
-    history.row(v);
-    history.flush();
-  };
-  // The peak of the driven conditions' reactions (all conditions' if none is driven) and loads, as
-  // explicit runs report it.
-  bool anyDriven = false;
-  for (const NodeCondition& c : scene.conditions) anyDriven = anyDriven || isDriven(c);
-  const auto trackPeak = [&] {
-    for (std::size_t i = 0; i < scene.conditions.size(); ++i)
-      if (isDriven(scene.conditions[i]) || !anyDriven)
-        result.peakLoad = std::max(result.peakLoad, solver.conditions()[i].reaction.norm());
-    for (const Load& l : scene.loads) result.peakLoad = std::max(result.peakLoad, (l.force * l.history(solver.time())).norm());
-  };
-  std::unique_ptr<io::Progress> progress;
-  const double total = settings.indirect ? settings.indirect->until : scene.endTime;
-  if (options.progress) {
-    io::Progress::Options o;
-    o.label = "ecm-mpm " + scene.name + " (implicit)";
-    progress = std::make_unique<io::Progress>(total, o);
+  return columns;
+}
+
+// The run in parts, as the explicit Run (mpm/run.cpp):
+//   loop        one adaptive load step at a time (ImplicitSolver::advance) to the end of the
+//               pseudo-time, or of the opening under indirect control
+//   output      a history row per load step; VTU snapshots at every snapshot_every-th multiple
+//               of output_interval (pseudo-time, or mm of opening) and at the start and end
+//   checkpoint  on a stop request, after a failure, and as the scene's checkpoint key asks
+class ImplicitRun {
+ public:
+  ImplicitRun(const Scene& scene, const RunOptions& options)
+      : scene_(scene), settings_(*scene.solver.implicit), options_(options), start_(WallClock::now()),
+        solver_(scene, options.threads, solverOptions(settings_)), checkpointFile_(checkpointPath(options.outputDir)),
+        lastCheckpoint_(start_) {
+    result_.particles = solver_.particles().size();
+    for (const NodeCondition& c : scene.conditions) anyDriven_ = anyDriven_ || isDriven(c);
+    if (settings_.indirect) control_ = indirectControl(scene);
+    total_ = settings_.indirect ? settings_.indirect->until : scene.endTime;
+    largest_ = settings_.indirect ? settings_.indirect->step : settings_.loadStep;
+    if (options.restart) readRestart();  // before anything in the folder is touched
+    io::prepareOutputDir(options.outputDir);
+    openOutputs();
   }
-  row({});
-  try {
-    double done = 0.0;
-    const IndirectControl control = settings.indirect ? indirectControl(scene) : IndirectControl{};
-    const double largest = settings.indirect ? settings.indirect->step : settings.loadStep;
-    while (done < total * (1.0 - 1e-12)) {
-      const ImplicitStepReport r = settings.indirect ? solver.advance(control, largest, total - done)
-                                                     : solver.advance(largest, total - done);
-      done += r.size;
-      iterations += r.totalIterations, halvings += r.cuts, released += r.released;
-      mostIterations = std::max(mostIterations, r.totalIterations);
-      linearSolve += r.linearSolveSeconds;
-      factorizations += r.factorizations;
-      trackPeak();
-      row(r);
-      if (progress) progress->update(done);
-      if ((options.onRow && !options.onRow(solver.time(), solver.steps())) ||
-          (options.stop && options.stop->load()) || (options.maxSteps > 0 && solver.steps() >= options.maxSteps)) {
-        result.error = "stopped on request at step " + std::to_string(solver.steps()) +
-                       " (implicit_static runs have no checkpoints yet: the outputs so far are kept)";
+
+  RunResult execute() {
+    try {
+      if (!options_.restart) output();
+      stepLoop();
+      result_.completed = !result_.stopped;
+    } catch (const SimulationError& e) {
+      result_.error = e.what();
+      try {
+        checkpoint();  // the last converged state
+      } catch (const io::OutputError& o) {
+        outputFailure(o);
+      }
+    } catch (const io::OutputError& e) {
+      result_.error = std::string(e.what()) + " (at step " + std::to_string(solver_.steps()) + ")";
+      outputFailed_ = true;
+    }
+    if (progress_) progress_->finish();
+    try {
+      if (!outputFailed_) {
+        if (snapshots_ && !result_.completed) snapshots_->add(solver_.particles(), book_.progress);  // where it stopped
+        history_->close();
+        writeParticles(solver_.particles(), options_.outputDir / "particles_final.csv");
+      }
+    } catch (const io::OutputError& o) {
+      outputFailure(o);
+    }
+    result_.steps = solver_.steps();
+    result_.wallTime = secondsSince(start_);
+    std::error_code ec;
+    if (result_.completed) std::filesystem::remove(checkpointFile_, ec);  // it describes an unfinished run
+    if (std::filesystem::exists(checkpointFile_, ec)) result_.checkpoint = checkpointFile_;
+    try {
+      io::writeJsonSummary(summary(), options_.outputDir / "summary.json");
+    } catch (const io::OutputError& o) {
+      outputFailure(o);
+    }
+    if (!outputFailed_ && options_.plot && !result_.stopped) {
+      plotLoadDisplacement(scene_, options_.outputDir);
+      plotDamage(scene_, solver_.particles().size(), options_.outputDir);
+    }
+    return result_;
+  }
+
+ private:
+  // --- the loop ---
+  void stepLoop() {
+    while (book_.progress < total_ * (1.0 - 1e-12)) {
+      if (stopRequested()) {
+        checkpoint();
+        result_.stopped = true;
+        result_.error = "stopped on request at step " + std::to_string(solver_.steps()) + " (checkpoint written)";
         break;
       }
+      const ImplicitStepReport r = settings_.indirect ? solver_.advance(control_, largest_, total_ - book_.progress)
+                                                      : solver_.advance(largest_, total_ - book_.progress);
+      book_.progress += r.size;
+      book_.iterations += r.totalIterations, book_.halvings += r.cuts, book_.released += r.released;
+      book_.factorizations += r.factorizations;
+      book_.mostIterations = std::max(book_.mostIterations, static_cast<long>(r.totalIterations));
+      book_.linearSolveSeconds += r.linearSolveSeconds;
+      trackPeak();
+      row(r);
+      snapshotIfDue();
+      if (options_.onRow && !options_.onRow(solver_.time(), solver_.steps())) rowObserverAsksStop_ = true;
+      if (progress_) progress_->update(book_.progress);
+      if (book_.progress < total_ * (1.0 - 1e-12) && checkpointDue()) checkpoint();
     }
-    result.completed = result.error.empty();
-  } catch (const SimulationError& e) {
-    result.error = e.what();
-  } catch (const io::OutputError& e) {
-    result.error = e.what();
   }
-  if (progress) progress->finish();
-  history.close();
-  result.steps = solver.steps();
-  result.wallTime = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  writeParticles(solver.particles(), options.outputDir / "particles_final.csv");
-  long cracked = 0;
-  for (const auto b : solver.particles().band) cracked += b >= 0 ? 1 : 0;
-  nlohmann::json j;
-  j["units"] = "mm, N, MPa, t, s (time: pseudo-time)";
-  j["scene"] = scene.name;
-  j["scheme"] = "implicit_static";
-  j["control"] = settings.indirect ? "indirect" : "displacement";
-  j["status"] = result.completed ? "completed" : "failed";
-  if (!result.completed) j["error"] = result.error;
-  j["steps"] = result.steps;
-  j["particles"] = result.particles;
-  j["peak_load_N"] = result.peakLoad;
-  j["load_factor"] = solver.loadFactor();
-  j["newton_iterations"] = iterations;
-  j["newton_iterations_per_step"] = result.steps > 0 ? static_cast<double>(iterations) / static_cast<double>(result.steps) : 0.0;
-  j["most_newton_iterations_in_a_step"] = mostIterations;
-  j["halvings"] = halvings;
-  j["linear_solve_s"] = linearSolve;
-  j["factorizations"] = factorizations;
-  j["linear_solver"] = settings.umfpack ? "umfpack" : "sparselu";
-  j["snap_back_releases"] = released;
-  j["cracked_particles"] = cracked;
-  const Energies e = solver.energies();
-  // Two dissipations (docs/implicit.md, "Energies"): the model's f int Y dD, and the internal work
-  // minus the strain energy, which the external work balances step by step.
-  j["energies_Nmm"] = {{"strain", e.strain},
-                       {"external_work", e.externalWork},
-                       {"internal_work", solver.internalWork()},
-                       {"dissipated", e.dissipated},
-                       {"work_dissipated", solver.internalWork() - e.strain}};
-  j["energy_balance"] = std::abs(e.externalWork - solver.internalWork()) / std::max(std::abs(e.externalWork), 1e-300);
-  j["wall_time_s"] = result.wallTime;
-  j["threads"] = solver.setup().threads;
-  io::writeJsonSummary(j, options.outputDir / "summary.json");
-  if (options.plot) {
-    plotLoadDisplacement(scene, options.outputDir);
-    plotDamage(scene, solver.particles().size(), options.outputDir);
+  bool stopRequested() const {
+    return rowObserverAsksStop_ || (options_.stop && options_.stop->load(std::memory_order_relaxed)) ||
+           (options_.maxSteps > 0 && solver_.steps() >= options_.maxSteps);
   }
-  return result;
-}
+  // The peak of the driven conditions' reactions (all conditions' if none is driven) and loads, as
+  // explicit runs report it.
+  void trackPeak() {
+    for (std::size_t i = 0; i < scene_.conditions.size(); ++i)
+      if (isDriven(scene_.conditions[i]) || !anyDriven_)
+        book_.peakLoad = std::max(book_.peakLoad, solver_.conditions()[i].reaction.norm());
+    for (const Load& l : scene_.loads) book_.peakLoad = std::max(book_.peakLoad, (l.force * l.history(solver_.time())).norm());
+  }
+
+  // --- output ---
+  void openOutputs() {
+    const std::filesystem::path& dir = options_.outputDir;
+    if (options_.restart) {
+      try {
+        history_ = std::make_unique<io::CsvWriter>(dir / "history.csv", implicitColumns(scene_), book_.history);
+      } catch (const io::OutputError&) {
+        throw;
+      } catch (const std::runtime_error& e) {
+        throw CheckpointError("cannot continue from checkpoint '" + checkpointFile_.string() + "': " + e.what());
+      }
+    } else {
+      std::error_code ignored;  // a checkpoint of an earlier run in this folder no longer applies
+      std::filesystem::remove(checkpointFile_, ignored);
+      history_ = std::make_unique<io::CsvWriter>(dir / "history.csv", implicitColumns(scene_));
+    }
+    if (options_.snapshots) {
+      snapshots_ = std::make_unique<VtuSeries>(dir);
+      if (options_.restart) snapshots_->resume(book_.snapshotTimes);
+    }
+    if (options_.progress) {
+      io::Progress::Options o;
+      o.label = "ecm-mpm " + scene_.name + " (implicit)";
+      progress_ = std::make_unique<io::Progress>(total_, o);
+    }
+  }
+  void output() {
+    row({});
+    if (snapshots_) snapshots_->add(solver_.particles(), book_.progress);
+    book_.nextSnapshot = snapshotSpacing();
+  }
+  double snapshotSpacing() const { return scene_.outputInterval * scene_.snapshotEvery; }
+  // A snapshot where the progress passes the next multiple of the spacing, and at the end.
+  void snapshotIfDue() {
+    if (!snapshots_) return;
+    const bool end = book_.progress >= total_ * (1.0 - 1e-12);
+    const double spacing = snapshotSpacing();
+    if (!end && !(spacing > 0.0 && book_.progress >= book_.nextSnapshot * (1.0 - 1e-12))) return;
+    snapshots_->add(solver_.particles(), book_.progress);
+    while (spacing > 0.0 && book_.nextSnapshot <= book_.progress * (1.0 + 1e-12)) book_.nextSnapshot += spacing;
+  }
+  // A history row: the explicit columns (kinetic energy and damping 0), then the implicit ones.
+  void row(const ImplicitStepReport& r) {
+    std::vector<double> v{solver_.time(), static_cast<double>(solver_.steps())};
+    for (const ConditionState& c : solver_.conditions()) v.insert(v.end(), {c.displacement[0], c.displacement[1], c.reaction[0], c.reaction[1]});
+    for (const Load& l : scene_.loads) {
+      const Vec2 f = l.force * l.history(solver_.time());
+      v.insert(v.end(), {f[0], f[1]});
+    }
+    const Energies e = solver_.energies();
+    v.insert(v.end(), {0.0, e.strain, e.externalWork, e.dissipated, 0.0, static_cast<double>(cracked()), solver_.loadFactor(),
+                       static_cast<double>(r.totalIterations), static_cast<double>(r.cuts), static_cast<double>(r.released),
+                       r.size, r.onsetOvershoot, solver_.internalWork(), solver_.internalWork() - e.strain});
+    history_->row(v);
+    history_->flush();
+  }
+  long cracked() const {
+    long n = 0;
+    for (const auto b : solver_.particles().band) n += b >= 0 ? 1 : 0;
+    return n;
+  }
+  void outputFailure(const io::OutputError& o) {
+    result_.error = result_.error.empty() ? o.what() : result_.error + "; then: " + o.what();
+    result_.completed = result_.stopped = false;
+    outputFailed_ = true;
+  }
+
+  // --- checkpoint ---
+  void readRestart() {
+    book_ = readImplicitCheckpoint(checkpointFile_, solver_, options_.sceneHash);
+    result_.restartedFrom = solver_.steps();
+    checkpointStep_ = solver_.steps();
+  }
+  bool checkpointDue() const {
+    const CheckpointSettings& every = scene_.checkpoint;
+    return (every.everySteps > 0 && solver_.steps() % every.everySteps == 0) ||
+           (every.everyMinutes > 0.0 && secondsSince(lastCheckpoint_) >= 60.0 * every.everyMinutes);
+  }
+  void checkpoint() {
+    if (checkpointStep_ == solver_.steps()) return;
+    history_->flush();
+    book_.history = {history_->bytes(), history_->digest(), history_->rows()};
+    if (snapshots_) book_.snapshotTimes = snapshots_->times();
+    writeImplicitCheckpoint(checkpointFile_, solver_, book_, options_.sceneHash);
+    checkpointStep_ = solver_.steps();
+    lastCheckpoint_ = WallClock::now();
+    ++result_.checkpoints;
+  }
+
+  // --- summary ---
+  nlohmann::json summary() {
+    result_.peakLoad = book_.peakLoad;
+    nlohmann::json j;
+    j["units"] = "mm, N, MPa, t, s (time: pseudo-time)";
+    j["scene"] = scene_.name;
+    j["scheme"] = "implicit_static";
+    j["control"] = settings_.indirect ? "indirect" : "displacement";
+    j["status"] = result_.completed ? "completed" : (result_.stopped ? "stopped" : "failed");
+    if (!result_.error.empty()) j["error"] = result_.error;
+    if (result_.stopped && !options_.resumeCommand.empty()) j["resume"] = options_.resumeCommand;
+    if (result_.restartedFrom >= 0) j["restarted_from_step"] = result_.restartedFrom;
+    j["steps"] = solver_.steps();
+    j["particles"] = result_.particles;
+    j["peak_load_N"] = book_.peakLoad;
+    j["load_factor"] = solver_.loadFactor();
+    j["newton_iterations"] = book_.iterations;
+    j["newton_iterations_per_step"] =
+        solver_.steps() > 0 ? static_cast<double>(book_.iterations) / static_cast<double>(solver_.steps()) : 0.0;
+    j["most_newton_iterations_in_a_step"] = book_.mostIterations;
+    j["halvings"] = book_.halvings;
+    j["factorizations"] = book_.factorizations;
+    j["linear_solve_s"] = book_.linearSolveSeconds;
+    j["linear_solver"] = settings_.umfpack ? "umfpack" : "sparselu";
+    j["snap_back_releases"] = book_.released;
+    j["cracked_particles"] = cracked();
+    const Energies e = solver_.energies();
+    // Two dissipations (docs/implicit.md, "Energies"): the model's f int Y dD, and the internal
+    // work minus the strain energy, which the external work balances step by step.
+    j["energies_Nmm"] = {{"strain", e.strain},
+                         {"external_work", e.externalWork},
+                         {"internal_work", solver_.internalWork()},
+                         {"dissipated", e.dissipated},
+                         {"work_dissipated", solver_.internalWork() - e.strain}};
+    j["energy_balance"] = std::abs(e.externalWork - solver_.internalWork()) / std::max(std::abs(e.externalWork), 1e-300);
+    j["wall_time_s"] = result_.wallTime;
+    j["threads"] = solver_.setup().threads;
+    j["checkpoints_written"] = result_.checkpoints;
+    return j;
+  }
+
+  const Scene& scene_;
+  const ImplicitSettings& settings_;
+  RunOptions options_;
+  WallClock::time_point start_;
+  ImplicitSolver solver_;
+  std::filesystem::path checkpointFile_;
+  WallClock::time_point lastCheckpoint_;
+  IndirectControl control_;
+  double total_ = 0.0, largest_ = 0.0;
+  bool anyDriven_ = false, rowObserverAsksStop_ = false, outputFailed_ = false;
+  long checkpointStep_ = -1;
+  ImplicitBookkeeping book_;
+  RunResult result_;
+  std::unique_ptr<io::CsvWriter> history_;
+  std::unique_ptr<VtuSeries> snapshots_;
+  std::unique_ptr<io::Progress> progress_;
+};
+
+}  // namespace
+
+RunResult runImplicitScene(const Scene& scene, const RunOptions& options) { return ImplicitRun(scene, options).execute(); }
 
 }  // namespace ecm::mpm

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -42,6 +43,7 @@ struct ImplicitSolver::Attempt {
   Trial trial;                           // at du
   ImplicitStepReport report;
   SnapBackPolicy snapBack = SnapBackPolicy::Stop;
+  double reuseRatio = 0.1;               // ImplicitOptions::reuseRatio, 0 after a failed attempt (Newton proper)
   // Why it failed: the iteration, the relative residual and the particle (SIZE_MAX: none).
   int failedIteration = 0;
   double failedResidual = 0.0;
@@ -142,6 +144,56 @@ bool ImplicitSolver::prepare(double dt, const IndirectControl* control, Attempt&
   return true;
 }
 
+ImplicitSolver::SavedState ImplicitSolver::saved() const {
+  SavedState s;
+  s.time = time_, s.loadFactor = lambda_, s.nextPiece = nextPiece_, s.steps = steps_;
+  s.externalWork = totals_.externalWork, s.internalWork = internalWork_, s.dissipated = totals_.dissipated;
+  s.released = totals_.released;
+  for (const ConditionState& c : conditions_) {
+    s.reactions.push_back(c.reaction);
+    s.conditionDisplacements.push_back(c.displacement);
+  }
+  for (const Stencil& st : geometry_.stencils) s.stencilBases.push_back(st.base);
+  s.prescribed = geometry_.prescribed;
+  if (luPattern_ >= 0 && luPattern_ == geometry_.patternBuilds) s.factored = factored_;
+  return s;
+}
+
+void ImplicitSolver::restore(const SavedState& s) {
+  if (s.reactions.size() != conditions_.size() || s.conditionDisplacements.size() != conditions_.size())
+    throw std::invalid_argument("it has " + std::to_string(s.reactions.size()) + " conditions, the scene " +
+                                std::to_string(conditions_.size()));
+  time_ = s.time, lambda_ = s.loadFactor, nextPiece_ = s.nextPiece, steps_ = s.steps;
+  totals_.externalWork = s.externalWork, internalWork_ = s.internalWork, totals_.dissipated = s.dissipated;
+  totals_.released = s.released;
+  for (std::size_t c = 0; c < conditions_.size(); ++c) {
+    conditions_[c].reaction = s.reactions[c];
+    conditions_[c].displacement = s.conditionDisplacements[c];
+  }
+  // The geometry the next step compares its stencils with, and the factorisation on it: the
+  // next step then keeps or rebuilds the pattern, and reuses or renews K, as the saved run would.
+  geometry_ = StepGeometry{};
+  geometryStep_ = -1;
+  luPattern_ = -1;
+  factored_ = Eigen::SparseMatrix<double>();
+  lu_.forgetPattern();
+  if (s.stencilBases.empty()) return;
+  if (s.stencilBases.size() != particles_.size() || s.prescribed.size() != static_cast<std::size_t>(2 * setup_.scene.grid.nodeCount()))
+    throw std::invalid_argument("its step geometry does not fit the scene's particles and grid");
+  if (!restoreGeometry(setup_, particles_.size(), s.prescribed, s.stencilBases, geometry_))
+    throw std::invalid_argument("its step geometry has a stencil outside the grid");
+  if (s.factored.size() == 0) return;
+  const Eigen::SparseMatrix<double>& k = s.factored;
+  const Eigen::SparseMatrix<double>& pattern = geometry_.pattern;
+  const bool samePattern = k.rows() == pattern.rows() && k.cols() == pattern.cols() && k.nonZeros() == pattern.nonZeros() &&
+                           std::equal(k.outerIndexPtr(), k.outerIndexPtr() + k.cols() + 1, pattern.outerIndexPtr()) &&
+                           std::equal(k.innerIndexPtr(), k.innerIndexPtr() + k.nonZeros(), pattern.innerIndexPtr());
+  if (!samePattern) throw std::invalid_argument("its factorised tangent does not fit its step geometry");
+  if (!lu_.factorize(k)) throw std::invalid_argument("its factorised tangent is singular");
+  factored_ = k;
+  luPattern_ = geometry_.patternBuilds;
+}
+
 Eigen::SparseMatrix<double> ImplicitSolver::tangentAtStart(double dt) {
   Attempt a;
   if (!prepare(dt, nullptr, a)) return {};
@@ -154,6 +206,7 @@ bool ImplicitSolver::factorize(const Eigen::SparseMatrix<double>& k, Attempt& a)
   if (luPattern_ != geometry_.patternBuilds) lu_.forgetPattern();
   const bool ok = lu_.factorize(k);
   luPattern_ = ok ? geometry_.patternBuilds : -1;
+  if (ok) factored_ = k;
   a.report.linearSolveSeconds += omp_get_wtime() - start;
   a.report.factorizations++;
   return ok;
@@ -193,7 +246,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       const auto c = dofs.component[static_cast<std::size_t>(u)];
       rhs[u] = a.external[c] - start.internalForce[c] - start.tangentTimesDirection[c];
     }
-    if (luPattern_ != geometry_.patternBuilds || options_.reuseRatio <= 0.0) {
+    if (luPattern_ != geometry_.patternBuilds || a.reuseRatio <= 0.0) {
       assembleTangent(setup_, particles_, geometry_, start);
       if (!factorize(start.tangent, a)) return a.fail(0, 0.0, "the tangent at the step's start is singular");
     }
@@ -205,7 +258,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
   // A predictor far past the onset limit is not worth converging: the piece is cut at once.
   if (a.snapBack != SnapBackPolicy::Release && a.trial.failed == SIZE_MAX && a.trial.onsetOvershoot > 1.5 * options_.onsetOvershoot)
     return a.fail(0, 0.0, "the predictor carried a point past its onset by " + std::to_string(a.trial.onsetOvershoot) + " of its strength");
-  bool refactor = options_.reuseRatio <= 0.0;
+  bool refactor = a.reuseRatio <= 0.0;
   for (int it = 0;; ++it) {
     if (a.trial.failed != SIZE_MAX) return a.failInMaterial(it, a.trial, setup_, particles_);
     double relative = 0.0;
@@ -244,7 +297,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       continue;
     }
     // A stale factorisation that no longer contracts the residual well enough is renewed.
-    refactor = options_.reuseRatio <= 0.0 || bestNorm > options_.reuseRatio * r.norm();
+    refactor = a.reuseRatio <= 0.0 || bestNorm > a.reuseRatio * r.norm();
     a.du = std::move(bestDu);
     a.trial = std::move(best);
   }
@@ -260,7 +313,7 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
   for (const auto& [k, coefficient] : control.terms) c[k] += coefficient;
   const double cPrescribed = c.dot(a.direction);  // d tau per unit load factor through the driven components
   double dLambda = 0.0, previous = INFINITY;
-  bool refactor = options_.reuseRatio <= 0.0;
+  bool refactor = a.reuseRatio <= 0.0;
   // Newton on (du_f, d lambda) with the bordered system, from du = 0 (the first iteration is the
   // predictor): K_ff d_f + (K u^)_f d_lambda = r_f and c . (d_f + d_lambda u^) = d tau - c . du,
   // solved with one factorisation: d_f = a + d_lambda b, a = K_ff^-1 r_f, b = -K_ff^-1 (K u^)_f.
@@ -288,12 +341,12 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
       return true;
     }
     if (it >= options_.maxIterations) return a.fail(it, relative, "Newton did not converge");
-    if (it > 0 && r.norm() > options_.reuseRatio * previous) refactor = true;
+    if (it > 0 && r.norm() > a.reuseRatio * previous) refactor = true;
     previous = r.norm();
     if (refactor || luPattern_ != geometry_.patternBuilds) {
       assembleTangent(setup_, particles_, geometry_, t);
       if (!factorize(t.tangent, a)) return a.fail(it, relative, "the tangent is singular");
-      refactor = options_.reuseRatio <= 0.0;
+      refactor = a.reuseRatio <= 0.0;
     }
     const Eigen::VectorXd x = solve(r, a), y = -solve(ku, a);
     if (!x.allFinite() || !y.allFinite()) return a.fail(it, relative, "the tangent is singular");
@@ -385,14 +438,15 @@ void ImplicitSolver::commit(const Attempt& a, double dt) {
 
 ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, double largest, double remaining) {
   ImplicitStepReport total;
-  const double smallest = std::abs(largest) * std::ldexp(1.0, -options_.maxCuts) * (1.0 - 1e-9);
-  double piece = nextPiece_ > 0.0 ? std::min(nextPiece_, std::abs(largest)) : std::abs(largest);
+  const double smallest = std::abs(largest) * std::ldexp(1.0, -options_.maxCuts);  // of the adaptive piece
+  double piece = nextPiece_ > 0.0 ? std::clamp(nextPiece_, smallest, std::abs(largest)) : std::abs(largest);
   piece = std::copysign(std::min(piece, std::abs(remaining)), largest);
   // The last piece before `remaining` ends takes what is left when that is at most 1.5 pieces.
   if (std::abs(remaining) <= 1.5 * std::abs(piece)) piece = remaining;
   for (int cuts = 0;; ++cuts) {
     Attempt a;
-    const bool finest = std::abs(piece) <= smallest || cuts > 2 * options_.maxCuts;
+    const bool finest = cuts >= options_.maxCuts;
+    a.reuseRatio = cuts > 0 ? 0.0 : options_.reuseRatio;  // after a failure, a factorisation at every iteration
     a.snapBack = finest ? SnapBackPolicy::Release : SnapBackPolicy::Stop;  // a persisting snap-back is released
     bool ok = control ? attemptIndirect(*control, piece, a) : attempt(piece, a);
     // A piece that carries a point far past its onset is cut (docs/implicit.md, "Load steps").

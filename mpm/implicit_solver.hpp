@@ -68,15 +68,35 @@ class ImplicitSolver {
   // step() halves. The pseudo-time does not move.
   ImplicitStepReport step(const IndirectControl& control, double dTau);
   // One converged load step of at most `largest` and `remaining` (its size in the report): the
-  // adaptive step of a run. The piece follows the Newton iterations of the last one; a failed
-  // piece is halved, down to largest / 2^maxCuts, where a persisting material snap-back is
-  // released. Throws SimulationError as step() does.
+  // adaptive step of a run. The piece follows the Newton iterations and the onset overshoot of the
+  // last one, not below largest / 2^maxCuts; a failed piece is halved up to maxCuts times, each
+  // retry factorising at every Newton iteration, and at the last a persisting material snap-back
+  // is released. Throws SimulationError as step() does.
   ImplicitStepReport advance(double largest, double remaining);
   ImplicitStepReport advance(const IndirectControl& control, double largest, double remaining);
   double loadFactor() const { return lambda_; }
   // The tangent over the unknowns of a step of dt from here, at du = 0 (for benchmarks of the
   // linear solvers); empty if a particle left the grid.
   Eigen::SparseMatrix<double> tangentAtStart(double dt);
+
+  // What a checkpoint stores besides the particles (mpm/implicit_checkpoint.hpp): with it and the
+  // particles, a solver of the same scene continues bitwise as the one that was saved.
+  struct SavedState {
+    double time = 0.0, loadFactor = 0.0, nextPiece = 0.0;
+    long steps = 0;
+    double externalWork = 0.0, internalWork = 0.0, dissipated = 0.0;
+    long released = 0;
+    std::vector<Vec2> reactions, conditionDisplacements;  // per condition
+    // The last step's geometry (its stencils' first nodes, its prescribed components) and the
+    // tangent factorised on it (empty when the factorisation is of another pattern, or none).
+    std::vector<std::int32_t> stencilBases;
+    std::vector<std::uint8_t> prescribed;
+    Eigen::SparseMatrix<double> factored;
+  };
+  SavedState saved() const;
+  // Throws std::invalid_argument when the state does not fit this solver's scene.
+  void restore(const SavedState& s);
+  Particles& editParticles() { return particles_; }
 
   double time() const { return time_; }
   long steps() const { return steps_; }
@@ -117,6 +137,7 @@ class ImplicitSolver {
 
   LinearSolver lu_;
   long luPattern_ = -1;    // geometry_.patternBuilds of the factorised tangent (-1: none)
+  Eigen::SparseMatrix<double> factored_;  // that tangent (a checkpoint stores it)
   StepGeometry geometry_;  // of the committed state after `geometryStep_` steps (-1: none)
   long geometryStep_ = -1;
   double internalWork_ = 0.0;  // sum over steps and particles of V (sigma_n + sigma_n+1)/2 : d eps (N mm)

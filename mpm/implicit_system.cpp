@@ -159,6 +159,24 @@ bool stepGeometry(const StepSetup& setup, const Particles& p, const std::vector<
   return true;
 }
 
+bool restoreGeometry(const StepSetup& setup, std::size_t particles, const std::vector<std::uint8_t>& prescribed,
+                     const std::vector<std::int32_t>& bases, StepGeometry& g) {
+  const Grid& grid = setup.scene.grid;
+  const int support = supportSize(setup.scene.solver.shapeFunction);
+  g = StepGeometry{};
+  g.stencilNodes = support * support;
+  g.stencils.resize(particles);
+  for (std::size_t i = 0; i < particles; ++i) {
+    const int ix = bases[i] % grid.nodesX(), iy = bases[i] / grid.nodesX();
+    if (bases[i] < 0 || ix + support > grid.nodesX() || iy + support > grid.nodesY()) return false;
+    g.stencils[i].base = bases[i];
+  }
+  buildPattern(grid, support, particles, prescribed, g);
+  g.undamaged.assign(particles, 0);
+  g.elasticValues.setZero(g.pattern.nonZeros());
+  return true;
+}
+
 void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometry& g, const Eigen::VectorXd& du,
                    bool withTangent, SnapBackPolicy snapBack, Trial& t, const Eigen::VectorXd* direction) {
   const std::size_t count = p.size();

@@ -50,6 +50,11 @@ struct StepGeometry {
 // always recomputed.
 bool stepGeometry(const StepSetup& setup, const Particles& particles, const std::vector<std::uint8_t>& prescribed,
                   StepGeometry& geometry, std::size_t& outside);
+// A geometry from its stencils' first nodes and its prescribed components (a restart): the
+// unknowns and the pattern, weights zero and no elastic part; the next stepGeometry compares
+// with it. False when a stencil would reach outside the grid.
+bool restoreGeometry(const StepSetup& setup, std::size_t particles, const std::vector<std::uint8_t>& prescribed,
+                     const std::vector<std::int32_t>& bases, StepGeometry& geometry);
 
 // The particles' states at the end of the step for a trial du, not committed.
 struct Trial {

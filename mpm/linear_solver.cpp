@@ -1,6 +1,21 @@
 #include "mpm/linear_solver.hpp"
 
+#include <algorithm>
+
 namespace ecm::mpm {
+
+namespace {
+
+// K's pattern with every value 1: the analysis (ordering, strategy) then depends on the pattern
+// only, not on which K of that pattern came first, so a restarted run factorises as the
+// uninterrupted one did.
+Eigen::SparseMatrix<double> ones(const Eigen::SparseMatrix<double>& k) {
+  Eigen::SparseMatrix<double> m = k;
+  std::fill(m.valuePtr(), m.valuePtr() + m.nonZeros(), 1.0);
+  return m;
+}
+
+}  // namespace
 
 const char* toString(LinearSolverKind k) { return k == LinearSolverKind::Umfpack ? "umfpack" : "sparselu"; }
 
@@ -21,14 +36,14 @@ bool LinearSolver::factorize(const Eigen::SparseMatrix<double>& k) {
       // Measured in bench/implicit_bench.cpp (docs/implicit.md).
       umfpack_.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
       umfpack_.umfpackControl()(UMFPACK_IRSTEP) = 0;
-      umfpack_.analyzePattern(k);
+      umfpack_.analyzePattern(ones(k));
       analysed_ = true;
     }
     umfpack_.factorize(k);
     return umfpack_.info() == Eigen::Success;
   }
 #endif
-  if (!analysed_) lu_.analyzePattern(k), analysed_ = true;
+  if (!analysed_) lu_.analyzePattern(ones(k)), analysed_ = true;
   lu_.factorize(k);
   return lu_.info() == Eigen::Success;
 }

@@ -88,8 +88,6 @@ void validateImplicit(const Scene& s) {
   requireRange("solver.max_halvings", im.maxHalvings, 0.0, 30.0, true, true);
   if (im.umfpack && !available(LinearSolverKind::Umfpack))
     throw ValueError("solver.linear_solver", "this build has no UMFPACK (libsuitesparse-dev); use sparselu");
-  if (s.checkpoint.everySteps > 0 || s.checkpoint.everyMinutes > 0.0)
-    throw ValueError("checkpoint", "implicit_static scenes have no checkpoints yet");
   if (!im.indirect) {
     requireRange("solver.load_step", im.loadStep, 0.0, s.endTime, false, true);
     return;

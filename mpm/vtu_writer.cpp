@@ -65,8 +65,7 @@ static_assert(std::endian::native == std::endian::little, "the VTU files declare
 
 }  // namespace
 
-void writeVtu(const Solver& solver, const std::filesystem::path& path, std::string* scratch) {
-  const Particles& p = solver.particles();
+void writeVtu(const Particles& p, double time, const std::filesystem::path& path, std::string* scratch) {
   const std::size_t n = p.size();
   if (n > static_cast<std::size_t>(INT32_MAX)) throw std::length_error("VTU snapshot: more than 2^31 particles");
   auto band = [&](std::size_t i) -> const BandState* {
@@ -80,7 +79,7 @@ void writeVtu(const Solver& solver, const std::filesystem::path& path, std::stri
   out += "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
   out += "  <UnstructuredGrid>\n";
   out += "    <FieldData>\n      <DataArray type=\"Float64\" Name=\"TIME\" NumberOfTuples=\"1\" format=\"ascii\">";
-  put(out, solver.time());
+  put(out, time);
   out += "</DataArray>\n    </FieldData>\n";
   out += "    <Piece NumberOfPoints=\"" + std::to_string(n) + "\" NumberOfCells=\"" + std::to_string(n) + "\">\n";
   out += "      <PointData Scalars=\"damage\" Vectors=\"displacement\">\n";
@@ -88,7 +87,7 @@ void writeVtu(const Solver& solver, const std::filesystem::path& path, std::stri
   a.add<float>(out, "velocity", 3, n, [&](std::size_t i, int c) { return c < 2 ? p.velocity[i][c] : 0.0; });
   a.add<float>(out, "stress", 3, n, [&](std::size_t i, int c) { return p.stress[i][c]; });  // xx, yy, xy (MPa)
   a.add<float>(out, "strain", 3, n, [&](std::size_t i, int c) { return p.strain[i][c]; });  // xx, yy, gamma_xy
-  a.add<float>(out, "damage", 1, n, [&](std::size_t i, int) { return solver.damage(i); });
+  a.add<float>(out, "damage", 1, n, [&](std::size_t i, int) { return p.damage(i); });
   a.add<float>(out, "crack_normal", 3, n, [&](std::size_t i, int c) {
     const BandState* b = band(i);
     return b && c < 2 ? b->crackNormal[c] : 0.0;
@@ -135,10 +134,10 @@ std::string VtuSeries::fileName(std::size_t index) const {
   return stem_ + name;
 }
 
-void VtuSeries::add(const Solver& solver) {
+void VtuSeries::add(const Particles& particles, double time) {
   const std::string file = fileName(entries_.size());
-  writeVtu(solver, dir_ / file, &scratch_);
-  entries_.emplace_back(solver.time(), file);
+  writeVtu(particles, time, dir_ / file, &scratch_);
+  entries_.emplace_back(time, file);
   writeIndex();
 }
 

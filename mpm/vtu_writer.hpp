@@ -13,14 +13,18 @@ namespace ecm::mpm {
 
 // Writes the solver's particles to `path` (atomically: a reader never sees half a file).
 // `scratch`: a buffer kept between snapshots (no fresh pages to fault in for every one).
-void writeVtu(const Solver& solver, const std::filesystem::path& path, std::string* scratch = nullptr);
+void writeVtu(const Particles& particles, double time, const std::filesystem::path& path, std::string* scratch = nullptr);
+inline void writeVtu(const Solver& solver, const std::filesystem::path& path, std::string* scratch = nullptr) {
+  writeVtu(solver.particles(), solver.time(), path, scratch);
+}
 
 // The .pvd collection of a run; add() writes a snapshot and rewrites the index.
 class VtuSeries {
  public:
   // Snapshots go to DIR/particles_NNNNN.vtu, the index to DIR/particles.pvd.
   explicit VtuSeries(std::filesystem::path dir, std::string stem = "particles");
-  void add(const Solver& solver);
+  void add(const Particles& particles, double time);  // time: s (pseudo-time for implicit runs)
+  void add(const Solver& solver) { add(solver.particles(), solver.time()); }
   std::size_t size() const { return entries_.size(); }
   std::filesystem::path indexPath() const { return dir_ / (stem_ + ".pvd"); }
   std::vector<double> times() const;  // of the snapshots so far (s)

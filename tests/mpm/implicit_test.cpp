@@ -89,6 +89,55 @@ TEST(Implicit, ABlockUnderALoadStretchesAsElasticityGives) {
   EXPECT_NEAR(e.externalWork, e.strain, 1e-3 * e.strain);
 }
 
+// Pure bending of a beam 100 x 20 mm (nu = 0) by its ends: x = 0 held, x = L turned by the
+// affine field u = (-kappa L y, kappa L x / 2) of the exact solution u = (-kappa x y, kappa x^2 / 2)
+// (elasticity: sigma_xx = -E kappa y, no shear). Bilinear shape functions cannot carry x^2: each
+// cell adds a parasitic shear of order kappa h, so the strain energy exceeds the exact
+// U = E kappa^2 I L / 2 by a relative error of order (h / D)^2. Measured (docs/implicit.md):
+// 3.125, 0.781, 0.195, 0.0488 % at D/h = 2, 4, 8, 16 (exactly (h/D)^2 / 8), order 2.000.
+Scene bendingBeam(double h) {
+  const double length = 100.0, depth = 20.0, kappa = 1e-5;  // mm, mm, 1/mm
+  Scene s;
+  s.name = "bending";
+  s.grid = {Vec2(-h, -0.5 * depth - h), Vec2(h, h), static_cast<int>(std::lround(length / h)) + 2,
+            static_cast<int>(std::lround(depth / h)) + 2};
+  s.materials = {elasticMaterial(1000.0, 0.0)};
+  s.bodies = {{Shape::rectangle(Vec2(0.0, -0.5 * depth), Vec2(length, 0.5 * depth)), 0, false, Vec2::Zero()}};
+  s.particlesPerCell = 2;
+  NodeCondition held;
+  held.name = "held";
+  held.box = {Vec2(-2.0 * h, -depth), Vec2(0.0, depth)};
+  held.component[0].kind = held.component[1].kind = Prescribed::Fixed;
+  NodeCondition turned;
+  turned.name = "turned";
+  turned.box = {Vec2(length, -depth), Vec2(length + 2.0 * h, depth)};
+  Mat2 g;
+  g << 0.0, -kappa * length, 0.5 * kappa * length, 0.0;
+  turned.field = AffineVelocity{g, Vec2::Zero(), TimeFunction::hold(1.0)};
+  s.conditions = {held, turned};
+  s.endTime = 1.0;
+  return s;
+}
+
+TEST(Implicit, PureBendingConvergesToElasticityAtSecondOrder) {
+  const double exact = 0.5 * 1000.0 * 1e-10 * (20.0 * 20.0 * 20.0 / 12.0) * 100.0;  // E kappa^2 I L / 2, 1 mm thick
+  std::vector<double> errors;
+  for (const double h : {10.0, 5.0, 2.5, 1.25}) {
+    ImplicitSolver solver(bendingBeam(h));
+    solver.step(1.0);
+    errors.push_back(solver.energies().strain / exact - 1.0);
+    std::printf("D/h = %4.0f: strain energy %.6e N mm, exact %.6e, relative error %.4e\n", 20.0 / h,
+                solver.energies().strain, exact, errors.back());
+  }
+  for (std::size_t k = 0; k + 1 < errors.size(); ++k) {
+    ASSERT_GT(errors[k + 1], 0.0);  // a displacement method overestimates the stiffness
+    const double order = std::log2(errors[k] / errors[k + 1]);
+    std::printf("observed order %.3f\n", order);
+    EXPECT_NEAR(order, 2.0, 0.1);
+  }
+  EXPECT_LT(errors.back(), 5e-3);
+}
+
 // The assembled tangent against central differences of the assembled internal force, on a
 // notched block of the paper's concrete pulled past cracking: cracked points loading and
 // unloading, and intact ones, all in the scene.
