@@ -264,7 +264,7 @@ class ImplicitRun {
     if (result_.restartedFrom >= 0) j["restarted_from_step"] = result_.restartedFrom;
     j["steps"] = solver_.steps();
     j["particles"] = result_.particles;
-    j["peak_load_N"] = book_.peakLoad;
+    j["peak_load"] = book_.peakLoad;  // N, as explicit runs name it
     j["load_factor"] = solver_.loadFactor();
     j["newton_iterations"] = book_.iterations;
     j["newton_iterations_per_step"] =

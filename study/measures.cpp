@@ -148,4 +148,47 @@ double maxDeviation(const std::vector<double>& x, const std::vector<double>& y, 
   return worst;
 }
 
+LoadCurve loadCurve(const io::CsvTable& h, const std::string& condition) {
+  const auto column = [&](const std::string& name) {
+    const auto at = std::find(h.header.begin(), h.header.end(), name) - h.header.begin();
+    if (static_cast<std::size_t>(at) >= h.header.size()) throw std::runtime_error("no column " + name);
+    return static_cast<std::size_t>(at);
+  };
+  const std::size_t ux = column(condition + "_ux_mm"), uy = column(condition + "_uy_mm");
+  const std::size_t rx = column(condition + "_rx_N"), ry = column(condition + "_ry_N");
+  double most[2] = {0.0, 0.0};
+  for (const auto& row : h.rows) most[0] = std::max(most[0], std::abs(row[ux])), most[1] = std::max(most[1], std::abs(row[uy]));
+  const bool y = most[1] >= most[0];
+  LoadCurve c;
+  for (const auto& row : h.rows) {
+    c.displacement.push_back(row[y ? uy : ux]);
+    c.load.push_back(row[y ? ry : rx]);
+  }
+  return c;
+}
+
+double postPeakCurveError(const LoadCurve& run, const LoadCurve& ref) {
+  if (run.load.empty() || ref.load.empty()) return NAN;
+  const auto peakAt = [](const LoadCurve& c) {
+    return static_cast<std::size_t>(std::max_element(c.load.begin(), c.load.end()) - c.load.begin());
+  };
+  const std::size_t i = peakAt(run), j = peakAt(ref);
+  const double from = std::max(run.displacement[i], ref.displacement[j]);
+  const double to = std::min(run.displacement.back(), ref.displacement.back());
+  if (!(to > from) || !(ref.load[j] > 0.0)) return NAN;
+  // The branch of each curve between `from` and `to` (with the rows just outside, for interpolation).
+  const auto branch = [&](const LoadCurve& c, std::size_t peak, std::vector<double>& x, std::vector<double>& y,
+                          std::vector<double>& inside, std::vector<double>& insideY) {
+    for (std::size_t k = peak; k < c.load.size(); ++k) {
+      x.push_back(c.displacement[k]), y.push_back(c.load[k]);
+      if (c.displacement[k] >= from && c.displacement[k] <= to) inside.push_back(c.displacement[k]), insideY.push_back(c.load[k]);
+    }
+  };
+  std::vector<double> rx, ry, rin, riny, fx, fy, fin, finy;
+  branch(run, i, rx, ry, rin, riny);
+  branch(ref, j, fx, fy, fin, finy);
+  const double worst = std::max(maxDeviation(rin, riny, fx, fy), maxDeviation(fin, finy, rx, ry));
+  return worst / ref.load[j];
+}
+
 }  // namespace ecm::study

@@ -47,7 +47,7 @@ bool sameValue(const std::string& a, const std::string& b) {
 std::vector<std::string> availableMetrics(StudyKind kind, ReferenceKind reference) {
   if (kind == StudyKind::Point) return {"stress_path", "dissipation", "peak_stress"};
   if (reference == ReferenceKind::BarVibration) return {"period", "amplitude"};
-  return {"peak_load", "peak_reaction", "dissipated_energy"};
+  return {"peak_load", "peak_reaction", "dissipated_energy", "post_peak_curve"};
 }
 
 namespace {
@@ -111,8 +111,18 @@ Study readStudy(const YamlMap& m) {
 
   const YamlMap ref = m.child("reference");
   s.referenceLine = ref.line();
-  if (ref.has("closed_form") == ref.has("run")) ref.failHere("give exactly one of closed_form and run");
-  if (ref.has("closed_form")) {
+  if (static_cast<int>(ref.has("closed_form")) + static_cast<int>(ref.has("run")) + static_cast<int>(ref.has("scene")) != 1)
+    ref.failHere("give exactly one of closed_form, run and scene");
+  if (ref.has("scene")) {
+    if (s.kind != StudyKind::Mpm) ref.fail("scene", "applies to mpm studies only");
+    s.reference = ReferenceKind::Scene;
+    s.referenceLine = ref.line("scene");
+    const std::filesystem::path scene = ref.get<std::string>("scene");
+    s.referenceScene = scene.is_absolute() ? scene : (m.directory() / scene).lexically_normal();
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(s.referenceScene, ec)) ref.fail("scene", "no such file: " + s.referenceScene.string());
+    s.condition = ref.getOr<std::string>("condition", "");
+  } else if (ref.has("closed_form")) {
     if (s.kind == StudyKind::Mpm) {
       ref.getEnum("closed_form", {"bar_vibration"});
       s.reference = ReferenceKind::BarVibration;
@@ -137,8 +147,10 @@ Study readStudy(const YamlMap& m) {
     }
   }
   std::vector<std::string> available = availableMetrics(s.kind, s.reference);
-  if (s.kind == StudyKind::Mpm && s.reference == ReferenceKind::Run && s.condition.empty())
-    available.erase(std::find(available.begin(), available.end(), "peak_reaction"));  // needs a condition
+  const bool againstRun = s.reference == ReferenceKind::Run || s.reference == ReferenceKind::Scene;
+  if (s.kind == StudyKind::Mpm && againstRun && s.condition.empty())
+    for (const char* needsCondition : {"peak_reaction", "post_peak_curve"})
+      available.erase(std::find(available.begin(), available.end(), needsCondition));
   if (ref.has("metrics")) {
     for (const std::string& name : ref.scalarSequence<std::string>("metrics")) {
       if (std::find(available.begin(), available.end(), name) == available.end()) {
@@ -151,8 +163,9 @@ Study readStudy(const YamlMap& m) {
       s.metrics.push_back(name);
     }
     if (s.metrics.empty()) ref.fail("metrics", "needs at least one metric");
-  } else if (s.kind == StudyKind::Mpm && s.reference == ReferenceKind::Run) {
+  } else if (s.kind == StudyKind::Mpm && againstRun) {
     s.metrics = {s.condition.empty() ? "peak_load" : "peak_reaction", "dissipated_energy"};
+    if (!s.condition.empty()) s.metrics.push_back("post_peak_curve");
   } else {
     s.metrics = available;
   }

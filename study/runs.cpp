@@ -22,6 +22,7 @@
 #include "io/json_summary.hpp"
 #include "io/output_dir.hpp"
 #include "mpm/run.hpp"
+#include "mpm/scene_yaml.hpp"
 #include "study/study.hpp"
 #include "study/internal.hpp"
 
@@ -65,6 +66,7 @@ double jsonNumber(const nlohmann::json& j, const char* key) {
 struct ReferenceData {
   bool available = false;
   double peakLoad = NAN, peakReaction = NAN, dissipated = NAN;  // mpm run reference
+  LoadCurve curve;                                   // mpm run reference with a condition
   driver::PointRun point;                            // point run reference
   std::vector<double> pathParameter;         // point: strain path arc length of the reference rows
   double peakStress = NAN;
@@ -278,30 +280,71 @@ class Executor {
       }
       return;
     }
+    LoadCurve curve;
     if (!study_.condition.empty()) {
       try {
-        out.peakReaction = peakReaction(io::readCsv(dir / "history.csv"), study_.condition);
+        const io::CsvTable h = io::readCsv(dir / "history.csv");
+        out.peakReaction = peakReaction(h, study_.condition);
+        curve = loadCurve(h, study_.condition);
       } catch (const std::exception& e) {
         r.message = std::string("history.csv: ") + e.what();
       }
     }
     if (p.reference) {
-      ref.available = true;
-      ref.peakLoad = out.peakLoad;
-      ref.peakReaction = out.peakReaction;
-      ref.dissipated = out.dissipated;
-      refJson = {{"run", r.id},
-                 {"label", r.label},
-                 {"peak_load_N", jsonValue(out.peakLoad)},
-                 {"dissipated_energy_Nmm", jsonValue(out.dissipated)}};
-      if (!study_.condition.empty()) refJson["peak_reaction_" + study_.condition + "_N"] = jsonValue(out.peakReaction);
+      keepAsReference(out, curve, ref, refJson);
+      refJson["run"] = r.id;
+      refJson["label"] = r.label;
     }
     if (ref.available) {
       setMetric(r, "peak_load", relative(out.peakLoad, ref.peakLoad));
       setMetric(r, "peak_reaction", relative(out.peakReaction, ref.peakReaction));
       setMetric(r, "dissipated_energy", relative(out.dissipated, ref.dissipated));
+      setMetric(r, "post_peak_curve", postPeakCurveError(curve, ref.curve));
     }
   }
+
+  // The reference's values for the error measures.
+  void keepAsReference(const MpmOutcome& out, LoadCurve curve, ReferenceData& ref, nlohmann::json& refJson) const {
+    ref.available = true;
+    ref.peakLoad = out.peakLoad;
+    ref.peakReaction = out.peakReaction;
+    ref.dissipated = out.dissipated;
+    ref.curve = std::move(curve);
+    refJson = {{"peak_load_N", jsonValue(out.peakLoad)}, {"dissipated_energy_Nmm", jsonValue(out.dissipated)}};
+    if (!study_.condition.empty()) refJson["peak_reaction_" + study_.condition + "_N"] = jsonValue(out.peakReaction);
+  }
+
+ public:
+  // ReferenceKind::Scene: the reference scene, run once into DIR/reference (reused by --resume
+  // when it completed there before).
+  void runReferenceScene(ReferenceData& ref, nlohmann::json& refJson) const {
+    const std::filesystem::path dir = io::prepareOutputDir(dir_ / "reference");
+    const mpm::Scene scene = mpm::loadSceneFile(study_.referenceScene);
+    RunRecord r;
+    MpmOutcome out;
+    const bool reuse = options_.resume && readSummary(dir, r, out) && r.status == "completed";
+    if (!reuse) {
+      executeMpm(scene, dir);
+      if (!readSummary(dir, r, out)) r.status = "failed";
+    }
+    refJson = {{"scene", study_.referenceScene.string()}, {"status", r.status}};
+    if (r.status != "completed") {
+      refJson["error"] = "the reference scene did not complete: no errors (" + r.message + ")";
+      return;
+    }
+    LoadCurve curve;
+    if (!study_.condition.empty()) {
+      const io::CsvTable h = io::readCsv(dir / "history.csv");
+      out.peakReaction = peakReaction(h, study_.condition);
+      curve = loadCurve(h, study_.condition);
+    }
+    keepAsReference(out, std::move(curve), ref, refJson);
+    refJson["scene"] = study_.referenceScene.string();
+    refJson["directory"] = "reference";
+    refJson["wall_time_s"] = jsonValue(r.wallTime);
+  }
+
+ private:
 
   void runPointScene(const PlannedRun& p, const std::filesystem::path& dir, RunRecord& r, ReferenceData& ref,
                      nlohmann::json& refJson) const {
@@ -384,6 +427,10 @@ StudyResult runStudy(const Study& study, const std::vector<PlannedRun>& plan, co
   ReferenceData ref;
   Executor executor(study, options, dir);
   nlohmann::json refJson;
+  if (study.reference == ReferenceKind::Scene) {
+    if (options.progress) std::cerr << "reference scene " << study.referenceScene.string() << "\n";
+    executor.runReferenceScene(ref, refJson);
+  }
   for (std::size_t n = 0; n < order.size(); ++n) {
     const PlannedRun& p = plan[order[n]];
     RunRecord r = executor.run(p, ref, refJson);
@@ -397,7 +444,8 @@ StudyResult runStudy(const Study& study, const std::vector<PlannedRun>& plan, co
   }
   if (!refJson.is_null()) result.reference = refJson;
   if (options.isolate && study.kind == StudyKind::Mpm) result.studyRssMb = parentRssMb();
-  if (study.reference == ReferenceKind::Run && !ref.available)
+  if ((study.reference == ReferenceKind::Run || study.reference == ReferenceKind::Scene) && !ref.available &&
+      !result.reference.contains("error"))
     result.reference["error"] = "the reference run did not complete: no errors";
 
   std::vector<double> cost, error;

@@ -21,18 +21,22 @@
 //     particles_per_cell: [1, 2, 3]
 //     grid.refinement: [1, 2, 4]   # derived: cells x r (rounded up), cell_size / r
 //     time_scale: [0.5, 1, 2]      # derived: every time of the loading x s (see applyTimeScale)
-//   reference:                     # exactly one of closed_form and run
+//   reference:                     # exactly one of closed_form, run and scene
 //     closed_form: bar_vibration   # mpm: fixed-free bar released with a uniform velocity
 //     condition: clamp             #   (its reaction is analysed: period and amplitude)
 //     # closed_form: uniaxial_tension   point: the enriched point's closed form
 //     # run: {particles_per_cell: 3, solver.cfl: 0.1}   the finest setting (added if not planned)
 //     # condition: top             with run: peak_reaction is this condition's largest |R| in history.csv
+//     # scene: ../den/den-4b-coarse-implicit.yaml   another scene, run once into reference/ (the
+//     #                            implicit solution as the rate-free reference of explicit runs)
 //     metrics: [period, amplitude] # optional subset; the run's error is the largest |metric|
 //   repeat: 1                      # runs per setting; the shortest wall time is kept
 //
 // Metrics (signed relative errors): bar_vibration: period, amplitude; uniaxial_tension and point
 // runs: stress_path (max deviation / f_t'), dissipation, peak_stress; mpm runs: peak_load
-// (summary.json), peak_reaction (needs condition), dissipated_energy.
+// (summary.json), peak_reaction (needs condition), dissipated_energy, post_peak_curve (needs
+// condition: the largest |P - P_ref| over the softening branch as a fraction of the reference's
+// peak, postPeakCurveError below).
 //
 // Key paths: map keys joined by dots, sequence entries by [i] (conditions[0].box.min). Plain
 // keys are written first, in the order given, then the derived knobs.
@@ -55,7 +59,7 @@ namespace ecm::study {
 
 enum class StudyKind { Mpm, Point };
 enum class StudyDesign { Grid, OneAtATime };
-enum class ReferenceKind { BarVibration, UniaxialTension, Run };
+enum class ReferenceKind { BarVibration, UniaxialTension, Run, Scene };
 
 // One knob: a scene key path (or a derived knob) and the values to try, as written.
 struct Knob {
@@ -82,6 +86,7 @@ struct Study {
   int referenceLine = 1;
   std::string condition;                   // BarVibration: the clamp
   std::vector<Setting> referenceSettings;  // Run: knob values of the reference run
+  std::filesystem::path referenceScene;    // Scene: the reference's scene file
   std::vector<std::string> metrics;        // the errors that make up a run's error
   int repeat = 1;
 };
@@ -198,6 +203,19 @@ struct UniaxialReference {
   double dissipation = 0.0;  // per unit volume of the point (MPa), f int F dD
 };
 UniaxialReference uniaxialTensionClosedForm(const MaterialParams& material, double effectiveSize, double strainEnd);
+
+// The load-displacement curve of a condition from history.csv: its displacement and reaction
+// along its driven component, the one whose displacement reaches the largest magnitude.
+struct LoadCurve {
+  std::vector<double> displacement, load;  // mm, N
+};
+LoadCurve loadCurve(const io::CsvTable& history, const std::string& condition);
+
+// The post-peak curve error: the largest |P - P_ref| over the softening branch, the
+// displacements past both peaks up to the smaller of the two last displacements (at the sample
+// points of both curves, each interpolated linearly in the other), divided by the reference's
+// peak load. NAN when the branches do not overlap. Displacements must increase along the rows.
+double postPeakCurveError(const LoadCurve& run, const LoadCurve& reference);
 
 // max |y(x_i) - curve(x_i)| over the sample points x_i inside the curve's range, the curve
 // interpolated linearly (x increasing).

@@ -154,6 +154,30 @@ TEST(StudyMeasures, SquareWavePeriodAndAmplitude) {
   EXPECT_NEAR(w.amplitude, amplitude, 1e-3 * amplitude);
 }
 
+// The post-peak curve error on curves whose answer is known: a reference rising to 10 kN at
+// 1 mm and falling linearly to 2 kN at 5 mm; a run, sampled between the reference's rows, whose
+// softening branch lies 300 N above it (its largest sample is at 1.05 mm: the branches are
+// compared from there to the run's end at 4.05 mm).
+TEST(StudyMeasures, PostPeakCurveError) {
+  LoadCurve ref, run;
+  for (int i = 0; i <= 50; ++i) {
+    const double d = 0.1 * i;
+    ref.displacement.push_back(d);
+    ref.load.push_back(d <= 1.0 ? 1e4 * d : 1e4 - 2000.0 * (d - 1.0));
+  }
+  for (int i = 0; i <= 40; ++i) {
+    const double d = 0.1 * i + 0.05;  // sampled between the reference's rows
+    run.displacement.push_back(d);
+    run.load.push_back(std::min(1.03e4 * d, 1e4 - 2000.0 * (d - 1.0) + 300.0));
+  }
+  EXPECT_NEAR(postPeakCurveError(run, ref), 300.0 / 1e4, 1e-12);
+  EXPECT_NEAR(postPeakCurveError(ref, ref), 0.0, 1e-15);
+  LoadCurve early;  // ends before the reference's peak: no common branch
+  early.displacement = {0.0, 0.5};
+  early.load = {0.0, 5000.0};
+  EXPECT_TRUE(std::isnan(postPeakCurveError(early, ref)));
+}
+
 // Independent computation: a non-dominated point has no other point at most as costly and at
 // most as wrong (one strictly better); equal points keep each other; NaN is never on the front.
 TEST(Pareto, MarksExactlyTheNonDominatedSettings) {
@@ -242,6 +266,39 @@ TEST(Study, RunReferenceAndResume) {
                                   "/data/mpm/elastic-bar.yaml\nknobs: {solver.cfl: [0.3]}\n"
                                   "reference: {run: {solver.cfl: 0.3}, metrics: [peak_reaction]}\n";
   expectContains(inputError([&] { parse(noCondition, tmp); }).reason, "'peak_reaction' is not a metric of this reference");
+}
+
+// Another scene as the reference (as the implicit DEN is for the explicit presets): run once
+// into reference/, every planned run compared with it; a scene reference with run or
+// closed_form is refused, as is a missing file.
+TEST(Study, SceneReference) {
+  TempDir tmp;
+  const std::string head = "name: bar-scene-ref\nscene: " + kSource + "/data/mpm/elastic-bar.yaml\nset: {end_time: 3.0e-5}\n"
+                           "knobs: {solver.cfl: [0.6, 0.3]}\n";
+  const Study study = parse(head + "reference: {scene: " + kSource + "/data/mpm/elastic-bar.yaml, condition: clamp, "
+                                   "metrics: [peak_reaction, peak_load]}\n", tmp);
+  EXPECT_EQ(study.reference, ReferenceKind::Scene);
+  const auto plan = planStudy(study);
+  ASSERT_EQ(plan.size(), 2u);
+  EXPECT_FALSE(plan[0].reference || plan[1].reference);
+  StudyOptions o;
+  o.outputDir = tmp.path() / "out";
+  o.threads = 1;
+  o.isolate = false;
+  o.progress = false;
+  const StudyResult r = runStudy(study, plan, o);
+  ASSERT_TRUE(r.allCompleted);
+  EXPECT_TRUE(std::filesystem::exists(o.outputDir / "reference" / "history.csv"));
+  EXPECT_EQ(r.reference["directory"], "reference");
+  // The reference scene is the base scene without the study's `set` (end_time 1.2e-4 s against
+  // 3e-5 s): the same material and loading, so the peaks agree closely but not exactly.
+  for (const RunRecord& run : r.runs) {
+    ASSERT_TRUE(std::isfinite(run.metrics[0])) << run.label;
+    EXPECT_LT(std::abs(run.metrics[0]), 0.5) << run.label;
+  }
+  expectContains(inputError([&] { parse(head + "reference: {scene: x.yaml, run: {solver.cfl: 0.3}}\n", tmp); }).reason,
+                 "exactly one of closed_form, run and scene");
+  expectContains(inputError([&] { parse(head + "reference: {scene: no-such-scene.yaml}\n", tmp); }).reason, "no such file");
 }
 
 // The enriched point under uniaxial tension against material/uniaxial_closed_form.hpp: the
