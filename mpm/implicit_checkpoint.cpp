@@ -49,7 +49,7 @@ void writeImplicitCheckpoint(const std::filesystem::path& path, const ImplicitSo
   e.put(run.nextSnapshot);
   e.put(run.peakLoad);
   e.put(run.linearSolveSeconds);
-  for (const long v : {run.iterations, run.halvings, run.released, run.factorizations, run.mostIterations})
+  for (const long v : {run.iterations, run.halvings, run.released, run.factorizations, run.mostIterations, run.relaxed})
     e.put(static_cast<std::int64_t>(v));
   e.put(run.history.bytes);
   e.put(run.history.digest);
@@ -111,7 +111,7 @@ ImplicitBookkeeping readImplicitCheckpoint(const std::filesystem::path& path, Im
   run.nextSnapshot = d.get<double>();
   run.peakLoad = d.get<double>();
   run.linearSolveSeconds = d.get<double>();
-  for (long* v : {&run.iterations, &run.halvings, &run.released, &run.factorizations, &run.mostIterations})
+  for (long* v : {&run.iterations, &run.halvings, &run.released, &run.factorizations, &run.mostIterations, &run.relaxed})
     *v = static_cast<long>(d.get<std::int64_t>());
   run.history.bytes = d.get<std::uint64_t>();
   run.history.digest = d.get<std::uint64_t>();

@@ -13,7 +13,7 @@
 //              factorised tangent: i64 rows (0: none), u64 nnz, i32 outer rows+1, i32 inner nnz, f64 nnz |
 //            particles (as mpm/checkpoint.hpp) |
 //            run: f64 progress, next snapshot, peak load, linear-solve seconds | i64 iterations,
-//              halvings, releases, factorisations, most iterations in a step |
+//              halvings, releases, factorisations, most iterations in a step, relaxed steps |
 //              u64 history.csv bytes, FNV-1a 64, rows | u64 snapshots, f64 their times
 #include <cstdint>
 #include <filesystem>
@@ -33,7 +33,7 @@ struct ImplicitBookkeeping {
   double nextSnapshot = 0.0;   // of the VTU series, in the same unit
   double peakLoad = 0.0;       // N
   double linearSolveSeconds = 0.0;
-  long iterations = 0, halvings = 0, released = 0, factorizations = 0, mostIterations = 0;
+  long iterations = 0, halvings = 0, released = 0, factorizations = 0, mostIterations = 0, relaxed = 0;
   io::CsvWriter::Resume history;
   std::vector<double> snapshotTimes;
   int threads = 0;             // of the solver that wrote it (read only)

@@ -46,6 +46,8 @@ ImplicitOptions solverOptions(const ImplicitSettings& s) {
   o.tolerance = s.tolerance;
   o.maxIterations = s.maxIterations;
   o.maxCuts = s.maxHalvings;
+  o.onsetOvershoot = s.onsetOvershoot;
+  o.acceptTolerance = s.acceptTolerance;
   o.linearSolver = s.umfpack ? LinearSolverKind::Umfpack : LinearSolverKind::SparseLU;
   return o;
 }
@@ -53,7 +55,7 @@ ImplicitOptions solverOptions(const ImplicitSettings& s) {
 std::vector<std::string> implicitColumns(const Scene& scene) {
   std::vector<std::string> columns = historyColumns(scene);
   for (const char* c : {"load_factor", "newton_iterations", "halvings", "snapback_releases", "load_step", "onset_overshoot",
-                        "internal_work_Nmm", "work_dissipated_Nmm"})
+                        "internal_work_Nmm", "work_dissipated_Nmm", "relaxed"})
     columns.emplace_back(c);
   return columns;
 }
@@ -138,6 +140,7 @@ class ImplicitRun {
       book_.progress += r.size;
       book_.iterations += r.totalIterations, book_.halvings += r.cuts, book_.released += r.released;
       book_.factorizations += r.factorizations;
+      book_.relaxed += r.relaxed;
       book_.mostIterations = std::max(book_.mostIterations, static_cast<long>(r.totalIterations));
       book_.linearSolveSeconds += r.linearSolveSeconds;
       trackPeak();
@@ -213,7 +216,8 @@ class ImplicitRun {
     const Energies e = solver_.energies();
     v.insert(v.end(), {0.0, e.strain, e.externalWork, e.dissipated, 0.0, static_cast<double>(cracked()), solver_.loadFactor(),
                        static_cast<double>(r.totalIterations), static_cast<double>(r.cuts), static_cast<double>(r.released),
-                       r.size, r.onsetOvershoot, solver_.internalWork(), solver_.internalWork() - e.strain});
+                       r.size, r.onsetOvershoot, solver_.internalWork(), solver_.internalWork() - e.strain,
+                       static_cast<double>(r.relaxed)});
     history_->row(v);
     history_->flush();
   }
@@ -275,6 +279,7 @@ class ImplicitRun {
     j["linear_solve_s"] = book_.linearSolveSeconds;
     j["linear_solver"] = settings_.umfpack ? "umfpack" : "sparselu";
     j["snap_back_releases"] = book_.released;
+    j["relaxed_steps"] = book_.relaxed;  // kept with a residual between tolerance and accept_tolerance
     j["cracked_particles"] = cracked();
     const Energies e = solver_.energies();
     // Two dissipations (docs/implicit.md, "Energies"): the model's f int Y dD, and the internal

@@ -44,6 +44,9 @@ struct ImplicitSolver::Attempt {
   ImplicitStepReport report;
   SnapBackPolicy snapBack = SnapBackPolicy::Stop;
   double reuseRatio = 0.1;               // ImplicitOptions::reuseRatio, 0 after a failed attempt (Newton proper)
+  int maxIterations = 25;                // ImplicitOptions::maxIterations, 4 times that at the last halving
+  bool stalled = false;                  // Newton ran out of iterations; du and trial hold its last iterate
+  UpdateStatus failedStatus = UpdateStatus::Converged;  // of the material update that failed
   // Why it failed: the iteration, the relative residual and the particle (SIZE_MAX: none).
   int failedIteration = 0;
   double failedResidual = 0.0;
@@ -58,6 +61,7 @@ struct ImplicitSolver::Attempt {
   // A material update of `t` failed: the particle and its material's explanation.
   bool failInMaterial(int iteration, const Trial& t, const StepSetup& setup, const Particles& p) {
     failedParticle = t.failed;
+    failedStatus = t.failure.status;
     return fail(iteration, 0.0, setup.materials[p.material[t.failed]].explain(t.failure));
   }
 };
@@ -269,7 +273,11 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       a.report.residual = relative;
       return true;
     }
-    if (it >= options_.maxIterations) return a.fail(it, relative, "Newton did not converge");
+    if (it >= a.maxIterations) {
+      a.stalled = true;  // a.du and a.trial hold the last iterate
+      a.report.iterations = it;
+      return a.fail(it, relative, "Newton did not converge");
+    }
     if (refactor || luPattern_ != geometry_.patternBuilds) {
       assembleTangent(setup_, particles_, geometry_, a.trial);
       if (!factorize(a.trial.tangent, a)) return a.fail(it, relative, "the tangent is singular");
@@ -340,7 +348,13 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
       a.dLambda = dLambda;
       return true;
     }
-    if (it >= options_.maxIterations) return a.fail(it, relative, "Newton did not converge");
+    if (it >= a.maxIterations) {
+      a.stalled = true;  // the last iterate, as a converged one is kept
+      a.report.iterations = it;
+      a.du = du;
+      a.dLambda = dLambda;
+      return a.fail(it, relative, "Newton did not converge");
+    }
     if (it > 0 && r.norm() > a.reuseRatio * previous) refactor = true;
     previous = r.norm();
     if (refactor || luPattern_ != geometry_.patternBuilds) {
@@ -443,12 +457,22 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
   piece = std::copysign(std::min(piece, std::abs(remaining)), largest);
   // The last piece before `remaining` ends takes what is left when that is at most 1.5 pieces.
   if (std::abs(remaining) <= 1.5 * std::abs(piece)) piece = remaining;
+  // Attempts: the piece with the kept factorisation, then (if Newton did not converge) the same
+  // piece factorising at every iteration, then halves of it, the last with 4 times the iterations.
+  // A material snap-back gets one halving; if it persists, it is released (as explicit runs do).
+  bool retried = false;
+  int snapBackCuts = 0;  // halvings because a point snapped back: after the first, it is released
   for (int cuts = 0;; ++cuts) {
     Attempt a;
     const bool finest = cuts >= options_.maxCuts;
-    a.reuseRatio = cuts > 0 ? 0.0 : options_.reuseRatio;  // after a failure, a factorisation at every iteration
-    a.snapBack = finest ? SnapBackPolicy::Release : SnapBackPolicy::Stop;  // a persisting snap-back is released
+    a.reuseRatio = cuts > 0 || retried ? 0.0 : options_.reuseRatio;
+    a.maxIterations = finest ? 4 * options_.maxIterations : options_.maxIterations;
+    a.snapBack = finest || snapBackCuts > 0 ? SnapBackPolicy::Release : SnapBackPolicy::Stop;
     bool ok = control ? attemptIndirect(*control, piece, a) : attempt(piece, a);
+    // A piece whose Newton (proper) stalls below the acceptance tolerance is kept: its residual
+    // is carried into the next step's equilibrium (docs/implicit.md, "Load steps").
+    bool relaxed = false;
+    if (!ok && a.stalled && a.reuseRatio == 0.0 && a.failedResidual <= options_.acceptTolerance) ok = relaxed = true;
     // A piece that carries a point far past its onset is cut (docs/implicit.md, "Load steps").
     if (ok && !finest && a.trial.onsetOvershoot > options_.onsetOvershoot)
       ok = a.fail(a.report.iterations, a.report.residual,
@@ -462,7 +486,8 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
       total.size = piece;
       total.cuts = cuts;
       total.iterations = a.report.iterations;
-      total.residual = a.report.residual;
+      total.residual = relaxed ? a.failedResidual : a.report.residual;
+      total.relaxed = relaxed ? 1 : 0;
       total.released = a.trial.released;
       total.onsetOvershoot = a.trial.onsetOvershoot;
       // The next piece: longer after an easy step, shorter after a hard one.
@@ -473,6 +498,12 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
       nextPiece_ = std::abs(piece) * grow;
       return total;
     }
+    if (!finest && !retried && cuts == 0 && a.reuseRatio > 0.0 && a.why == "Newton did not converge") {
+      retried = true;  // the same piece with Newton proper
+      --cuts;
+      continue;
+    }
+    if (a.failedStatus == UpdateStatus::SnapBack) ++snapBackCuts;
     if (!finest) {
       // The overshoot grows about linearly with the piece: cut to where it would meet the limit.
       const double overshootCut = a.trial.onsetOvershoot > options_.onsetOvershoot && a.why.find("onset") != std::string::npos
@@ -492,7 +523,7 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
     }
     throw SimulationError(a.why.find("grid") != std::string::npos ? FailureKind::LeftGrid : FailureKind::MaterialFailure,
                           steps_ + 1, a.failedParticle == SIZE_MAX ? 0 : a.failedParticle, where, msg.str(),
-                          a.trial.failure.status, a.failedResidual);
+                          a.failedStatus, a.failedResidual);
   }
 }
 
@@ -527,6 +558,7 @@ ImplicitStepReport ImplicitSolver::stepInPieces(const IndirectControl* control, 
     total.cuts += r.cuts;
     total.residual = std::max(total.residual, r.residual);
     total.released += r.released;
+    total.relaxed += r.relaxed;
     total.linearSolveSeconds += r.linearSolveSeconds;
     total.onsetOvershoot = std::max(total.onsetOvershoot, r.onsetOvershoot);
   }

@@ -31,6 +31,10 @@ struct ImplicitOptions {
   int easyIterations = 4;
   int hardIterations = 10;
   double onsetOvershoot = 0.05;
+  // A step whose Newton, factorising at every iteration, stalls with a relative residual at most
+  // this is kept and counted (a point at the kink between loading and unloading can keep Newton
+  // from the tolerance at any step size; the next step's Newton takes the residual up).
+  double acceptTolerance = 1e-4;
 };
 
 // Indirect displacement control (docs/implicit.md): the driven conditions' prescribed components
@@ -53,6 +57,7 @@ struct ImplicitStepReport {
   int factorizations = 0;   // of the tangent, in all attempts
   double residual = 0.0;    // relative, at convergence
   long released = 0;        // snap-backs released at the material level in the step
+  int relaxed = 0;          // 1: kept with a residual between tolerance and acceptTolerance
   double linearSolveSeconds = 0.0;
 };
 
@@ -69,9 +74,10 @@ class ImplicitSolver {
   ImplicitStepReport step(const IndirectControl& control, double dTau);
   // One converged load step of at most `largest` and `remaining` (its size in the report): the
   // adaptive step of a run. The piece follows the Newton iterations and the onset overshoot of the
-  // last one, not below largest / 2^maxCuts; a failed piece is halved up to maxCuts times, each
-  // retry factorising at every Newton iteration, and at the last a persisting material snap-back
-  // is released. Throws SimulationError as step() does.
+  // last one, not below largest / 2^maxCuts. A piece whose Newton does not converge is tried
+  // again factorising at every iteration, then halved up to maxCuts times; the last try has 4
+  // times the iterations and releases a persisting material snap-back. Throws SimulationError as
+  // step() does.
   ImplicitStepReport advance(double largest, double remaining);
   ImplicitStepReport advance(const IndirectControl& control, double largest, double remaining);
   double loadFactor() const { return lambda_; }

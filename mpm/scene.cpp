@@ -86,6 +86,8 @@ void validateImplicit(const Scene& s) {
   requireRange("solver.tolerance", im.tolerance, 0.0, 1e-2, false, true);
   requireRange("solver.max_iterations", im.maxIterations, 1.0, 500.0, true, true);
   requireRange("solver.max_halvings", im.maxHalvings, 0.0, 30.0, true, true);
+  requireRange("solver.onset_overshoot", im.onsetOvershoot, 0.0, 1.0, false, true);
+  requireRange("solver.accept_tolerance", im.acceptTolerance, im.tolerance, 1e-2, true, true);
   if (im.umfpack && !available(LinearSolverKind::Umfpack))
     throw ValueError("solver.linear_solver", "this build has no UMFPACK (libsuitesparse-dev); use sparselu");
   if (!im.indirect) {

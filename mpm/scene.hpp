@@ -43,6 +43,8 @@ struct ImplicitSettings {
   double tolerance = 1e-6;  // force residual relative to the loads, reactions and internal forces
   int maxIterations = 25;   // Newton iterations of a step before it is halved
   int maxHalvings = 8;
+  double onsetOvershoot = 0.05;  // a load step may carry a point past its onset by this fraction of its strength
+  double acceptTolerance = 1e-4; // a step whose Newton stalls below this residual is kept (counted)
   double loadStep = 0.0;    // pseudo-time per load step (s), displacement control
   bool umfpack = false;     // the LU: UMFPACK (the default when the build has it) or Eigen's SparseLU (docs/implicit.md)
   struct Indirect {

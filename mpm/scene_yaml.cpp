@@ -103,6 +103,8 @@ SolverSettings readImplicitSolver(const YamlMap& m) {
   im.tolerance = m.getOr<double>("tolerance", im.tolerance);
   im.maxIterations = m.getOr<int>("max_iterations", im.maxIterations);
   im.maxHalvings = m.getOr<int>("max_halvings", im.maxHalvings);
+  im.onsetOvershoot = m.getOr<double>("onset_overshoot", im.onsetOvershoot);
+  im.acceptTolerance = m.getOr<double>("accept_tolerance", im.acceptTolerance);
   im.umfpack = m.getEnumOr("linear_solver", {"umfpack", "sparselu"}, available(LinearSolverKind::Umfpack) ? "umfpack" : "sparselu") ==
                "umfpack";
   if (m.has("control")) {
@@ -138,7 +140,8 @@ SolverSettings readSolver(const YamlMap& m, const std::string& preset) {
   SolverSettings s;
   const std::string scheme = m.getEnumOr("scheme", {"usf", "usl", "musl", "implicit_static"}, "usl");
   if (scheme == "implicit_static") return readImplicitSolver(m);
-  for (const char* k : {"tolerance", "max_iterations", "max_halvings", "load_step", "control", "linear_solver"})
+  for (const char* k : {"tolerance", "max_iterations", "max_halvings", "onset_overshoot", "accept_tolerance", "load_step", "control",
+                        "linear_solver"})
     m.reject(k, "is a key of implicit_static scenes (this one is explicit)");
   s.scheme = scheme == "usf" ? UpdateScheme::USF : (scheme == "musl" ? UpdateScheme::MUSL : UpdateScheme::USL);
   const std::string shape = m.getEnumOr("shape_function", {"linear", "ugimp", "bspline2"}, "linear");

@@ -45,7 +45,7 @@
 //     snap_back: release        # release | stop: an enriched point with no stable branch fails
 //                               # onto its stable branch (counted in summary.json) or stops the run
 //   (or, implicit: solver: {scheme: implicit_static, tolerance: 1e-6, max_iterations: 25,
-//    max_halvings: 8, load_step: S | control: {indirect: {driven: [..], reference: [x, y],
+//    max_halvings: 8, onset_overshoot: 0.05, linear_solver: umfpack, load_step: S | control: {indirect: {driven: [..], reference: [x, y],
 //    opening: [{node: [x, y], component: y, coefficient: 1}, ..], step: MM, until: MM}}};
 //    no flip, cfl or damping; docs/implicit.md, docs/inputs.md)
 //   end_time: 1e-3              # s

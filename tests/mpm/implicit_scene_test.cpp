@@ -168,6 +168,39 @@ TEST(ImplicitScene, AStoppedDisplacementControlledRunRestartsBitwiseOnAnotherThr
   EXPECT_EQ(rows, 61);
 }
 
+// A tolerance below round-off cannot be met: Newton stalls near 1e-13. With accept_tolerance
+// above that floor every step is kept and counted as relaxed (each looks hard, so the steps
+// shrink to the smallest); at the tolerance itself the run stops loudly, naming the step and
+// the residual. (Two iterations and two halvings keep it short.)
+TEST(ImplicitScene, AStalledNewtonIsKeptBelowTheAcceptToleranceAndStopsTheRunAboveIt) {
+  const std::string bar = replaced(replaced(shippedBar(), "until: 0.04 ", "until: 0.0002"),  // 20 elastic steps or more
+                                   "  control:", "  max_iterations: 2\n  max_halvings: 2\n  control:");
+  ecm::test::TempDir dir;
+  RunOptions options;
+  options.progress = false;
+  options.plot = false;
+  options.snapshots = false;
+  options.threads = 1;
+  {
+    const Scene scene = readScene(io::parseYaml(replaced(bar, "tolerance: 1e-6 ", "tolerance: 1e-16\n  accept_tolerance: 1e-9"), "bar.yaml"));
+    options.outputDir = dir.path() / "kept";
+    const RunResult r = runScene(scene, options);
+    EXPECT_TRUE(r.completed) << r.error;
+    const std::string summary = fileText(options.outputDir / "summary.json");
+    EXPECT_GE(r.steps, 20);
+    expectContains(summary, "\"relaxed_steps\": " + std::to_string(r.steps) + ",");
+  }
+  {
+    const Scene scene = readScene(io::parseYaml(replaced(bar, "tolerance: 1e-6 ", "tolerance: 1e-16\n  accept_tolerance: 1e-16"), "bar.yaml"));
+    options.outputDir = dir.path() / "stopped";
+    const RunResult r = runScene(scene, options);
+    EXPECT_FALSE(r.completed);
+    expectContains(r.error, "implicit step 1 ");
+    expectContains(r.error, "Newton did not converge");
+    EXPECT_TRUE(std::filesystem::exists(options.outputDir / "history.csv"));
+  }
+}
+
 TEST(ImplicitScene, VtuSnapshotsFollowTheOutputIntervalInTheProgressUnit) {
   // Under indirect control the progress is the opening (mm): a snapshot at 0, 0.0005, ... 0.002.
   const Scene scene = readScene(io::parseYaml(replaced(shippedBar(), "until: 0.04 ", "until: 0.002") +
