@@ -22,6 +22,7 @@ void writeImplicitCheckpoint(const std::filesystem::path& path, const ImplicitSo
   e.put(s.time);
   e.put(s.loadFactor);
   e.put(s.nextPiece);
+  e.put(s.nextOpening);
   e.put(static_cast<std::int64_t>(s.steps));
   e.put(s.externalWork);
   e.put(s.internalWork);
@@ -48,6 +49,7 @@ void writeImplicitCheckpoint(const std::filesystem::path& path, const ImplicitSo
   e.put(run.progress);
   e.put(run.nextSnapshot);
   e.put(run.peakLoad);
+  e.put(run.stopWatchPeak);
   e.put(run.linearSolveSeconds);
   for (const long v : {run.iterations, run.halvings, run.released, run.factorizations, run.mostIterations, run.relaxed})
     e.put(static_cast<std::int64_t>(v));
@@ -76,6 +78,7 @@ ImplicitBookkeeping readImplicitCheckpoint(const std::filesystem::path& path, Im
   s.time = d.get<double>();
   s.loadFactor = d.get<double>();
   s.nextPiece = d.get<double>();
+  s.nextOpening = d.get<double>();
   s.steps = static_cast<long>(d.get<std::int64_t>());
   s.externalWork = d.get<double>();
   s.internalWork = d.get<double>();
@@ -110,6 +113,7 @@ ImplicitBookkeeping readImplicitCheckpoint(const std::filesystem::path& path, Im
   run.progress = d.get<double>();
   run.nextSnapshot = d.get<double>();
   run.peakLoad = d.get<double>();
+  run.stopWatchPeak = d.get<double>();
   run.linearSolveSeconds = d.get<double>();
   for (long* v : {&run.iterations, &run.halvings, &run.released, &run.factorizations, &run.mostIterations, &run.relaxed})
     *v = static_cast<long>(d.get<std::int64_t>());

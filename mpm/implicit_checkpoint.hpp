@@ -3,16 +3,16 @@
 // run's (mpm/checkpoint.hpp) but with the implicit solver's state, so a restarted run continues
 // bitwise as the uninterrupted one, on any thread count. Written atomically and durably.
 //
-// Format (version 1; numbers in the machine's byte order):
+// Format (version 2; numbers in the machine's byte order):
 //   header, 32 bytes: "ECMIMPCK" | u32 version | u32 0x01020304 | u64 payload bytes | u64 FNV-1a 64
 //   payload: u64 scene file hash | i32 threads |
-//            solver: f64 time, load factor, next piece | i64 steps | f64 external work, internal
+//            solver: f64 time, load factor, next piece (pseudo-time), next opening (mm) | i64 steps | f64 external work, internal
 //              work, dissipated | i64 snap-back releases | u64 conditions, each f64 reaction x y,
 //              prescribed displacement x y |
 //            geometry: u64 g, i32 stencil first node g | u64 c, u8 prescribed c |
 //              factorised tangent: i64 rows (0: none), u64 nnz, i32 outer rows+1, i32 inner nnz, f64 nnz |
 //            particles (as mpm/checkpoint.hpp) |
-//            run: f64 progress, next snapshot, peak load, linear-solve seconds | i64 iterations,
+//            run: f64 progress, next snapshot, peak load, stop_when peak, linear-solve seconds | i64 iterations,
 //              halvings, releases, factorisations, most iterations in a step, relaxed steps |
 //              u64 history.csv bytes, FNV-1a 64, rows | u64 snapshots, f64 their times
 #include <cstdint>
@@ -25,13 +25,15 @@
 
 namespace ecm::mpm {
 
-inline constexpr std::uint32_t kImplicitCheckpointVersion = 1;
+// 2: the adaptive opening step, the stop_when peak
+inline constexpr std::uint32_t kImplicitCheckpointVersion = 2;
 
 // What the implicit run loop carries besides the solver.
 struct ImplicitBookkeeping {
-  double progress = 0.0;       // pseudo-time (s) or, under indirect control, the opening tau (mm) reached
+  double progress = 0.0;       // pseudo-time (s), then under indirect control `from` + the opening tau (mm) reached
   double nextSnapshot = 0.0;   // of the VTU series, in the same unit
   double peakLoad = 0.0;       // N
+  double stopWatchPeak = 0.0;  // N: the stop_when watch's peak (mpm/stop_when.hpp)
   double linearSolveSeconds = 0.0;
   long iterations = 0, halvings = 0, released = 0, factorizations = 0, mostIterations = 0, relaxed = 0;
   io::CsvWriter::Resume history;

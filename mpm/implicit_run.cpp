@@ -16,6 +16,7 @@
 #include "mpm/errors.hpp"
 #include "mpm/implicit_checkpoint.hpp"
 #include "mpm/implicit_solver.hpp"
+#include "mpm/stop_when.hpp"
 #include "mpm/vtu_writer.hpp"
 
 namespace ecm::mpm {
@@ -75,8 +76,12 @@ class ImplicitRun {
     result_.particles = solver_.particles().size();
     for (const NodeCondition& c : scene.conditions) anyDriven_ = anyDriven_ || isDriven(c);
     if (settings_.indirect) control_ = indirectControl(scene);
-    total_ = settings_.indirect ? settings_.indirect->until : scene.endTime;
-    largest_ = settings_.indirect ? settings_.indirect->step : settings_.loadStep;
+    from_ = settings_.indirect ? settings_.indirect->from : scene.endTime;
+    total_ = settings_.indirect ? from_ + settings_.indirect->until : scene.endTime;
+    if (scene.stopWhen) {
+      watched_ = findCondition(scene.conditions, scene.stopWhen->condition).value();  // validated
+      watchedComponent_ = drivenComponent(scene.conditions.at(watched_));
+    }
     if (options.restart) readRestart();  // before anything in the folder is touched
     io::prepareOutputDir(options.outputDir);
     openOutputs();
@@ -135,9 +140,14 @@ class ImplicitRun {
         result_.error = "stopped on request at step " + std::to_string(solver_.steps()) + " (checkpoint written)";
         break;
       }
-      const ImplicitStepReport r = settings_.indirect ? solver_.advance(control_, largest_, total_ - book_.progress)
-                                                      : solver_.advance(largest_, total_ - book_.progress);
+      // Load steps of pseudo-time to `from_` (the end time without indirect control), then the
+      // indirect control's steps of opening: the progress is the pseudo-time, then `from_` plus
+      // the opening (mm).
+      const bool controlled = settings_.indirect && book_.progress >= from_ * (1.0 - 1e-12);
+      const ImplicitStepReport r = controlled ? solver_.advance(control_, settings_.indirect->step, total_ - book_.progress)
+                                              : solver_.advance(settings_.loadStep, from_ - book_.progress);
       book_.progress += r.size;
+      if (!controlled && std::abs(book_.progress - from_) <= 1e-12 * from_) book_.progress = from_;
       book_.iterations += r.totalIterations, book_.halvings += r.cuts, book_.released += r.released;
       book_.factorizations += r.factorizations;
       book_.relaxed += r.relaxed;
@@ -147,6 +157,13 @@ class ImplicitRun {
       row(r);
       snapshotIfDue();
       if (options_.onRow && !options_.onRow(solver_.time(), solver_.steps())) rowObserverAsksStop_ = true;
+      if (scene_.stopWhen && watch_.observe(*scene_.stopWhen, book_.progress,
+                                            solver_.conditions()[watched_].reaction[watchedComponent_])) {
+        result_.endedByStopWhen = true;  // the load has fallen below the scene's fraction of its peak
+        result_.stopLoad = solver_.conditions()[watched_].reaction[watchedComponent_];
+        if (snapshots_) snapshots_->add(solver_.particles(), book_.progress);
+        break;
+      }
       if (progress_) progress_->update(book_.progress);
       if (book_.progress < total_ * (1.0 - 1e-12) && checkpointDue()) checkpoint();
     }
@@ -235,6 +252,7 @@ class ImplicitRun {
   // --- checkpoint ---
   void readRestart() {
     book_ = readImplicitCheckpoint(checkpointFile_, solver_, options_.sceneHash);
+    watch_.peak = book_.stopWatchPeak;
     result_.restartedFrom = solver_.steps();
     checkpointStep_ = solver_.steps();
   }
@@ -247,6 +265,7 @@ class ImplicitRun {
     if (checkpointStep_ == solver_.steps()) return;
     history_->flush();
     book_.history = {history_->bytes(), history_->digest(), history_->rows()};
+    book_.stopWatchPeak = watch_.peak;
     if (snapshots_) book_.snapshotTimes = snapshots_->times();
     writeImplicitCheckpoint(checkpointFile_, solver_, book_, options_.sceneHash);
     checkpointStep_ = solver_.steps();
@@ -267,6 +286,7 @@ class ImplicitRun {
     if (result_.stopped && !options_.resumeCommand.empty()) j["resume"] = options_.resumeCommand;
     if (result_.restartedFrom >= 0) j["restarted_from_step"] = result_.restartedFrom;
     j["steps"] = solver_.steps();
+    if (result_.endedByStopWhen) j["ended_by_stop_when_at_load_N"] = result_.stopLoad;
     j["particles"] = result_.particles;
     j["peak_load"] = book_.peakLoad;  // N, as explicit runs name it
     j["load_factor"] = solver_.loadFactor();
@@ -304,7 +324,10 @@ class ImplicitRun {
   std::filesystem::path checkpointFile_;
   WallClock::time_point lastCheckpoint_;
   IndirectControl control_;
-  double total_ = 0.0, largest_ = 0.0;
+  double from_ = 0.0, total_ = 0.0;
+  StopWatch watch_;
+  std::size_t watched_ = 0;
+  int watchedComponent_ = 0;
   bool anyDriven_ = false, rowObserverAsksStop_ = false, outputFailed_ = false;
   long checkpointStep_ = -1;
   ImplicitBookkeeping book_;

@@ -150,7 +150,7 @@ bool ImplicitSolver::prepare(double dt, const IndirectControl* control, Attempt&
 
 ImplicitSolver::SavedState ImplicitSolver::saved() const {
   SavedState s;
-  s.time = time_, s.loadFactor = lambda_, s.nextPiece = nextPiece_, s.steps = steps_;
+  s.time = time_, s.loadFactor = lambda_, s.nextPiece = nextPiece_, s.nextOpening = nextOpening_, s.steps = steps_;
   s.externalWork = totals_.externalWork, s.internalWork = internalWork_, s.dissipated = totals_.dissipated;
   s.released = totals_.released;
   for (const ConditionState& c : conditions_) {
@@ -167,7 +167,7 @@ void ImplicitSolver::restore(const SavedState& s) {
   if (s.reactions.size() != conditions_.size() || s.conditionDisplacements.size() != conditions_.size())
     throw std::invalid_argument("it has " + std::to_string(s.reactions.size()) + " conditions, the scene " +
                                 std::to_string(conditions_.size()));
-  time_ = s.time, lambda_ = s.loadFactor, nextPiece_ = s.nextPiece, steps_ = s.steps;
+  time_ = s.time, lambda_ = s.loadFactor, nextPiece_ = s.nextPiece, nextOpening_ = s.nextOpening, steps_ = s.steps;
   totals_.externalWork = s.externalWork, internalWork_ = s.internalWork, totals_.dissipated = s.dissipated;
   totals_.released = s.released;
   for (std::size_t c = 0; c < conditions_.size(); ++c) {
@@ -452,8 +452,9 @@ void ImplicitSolver::commit(const Attempt& a, double dt) {
 
 ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, double largest, double remaining) {
   ImplicitStepReport total;
+  double& nextPiece = control ? nextOpening_ : nextPiece_;  // of pseudo-time, or of opening (mm)
   const double smallest = std::abs(largest) * std::ldexp(1.0, -options_.maxCuts);  // of the adaptive piece
-  double piece = nextPiece_ > 0.0 ? std::clamp(nextPiece_, smallest, std::abs(largest)) : std::abs(largest);
+  double piece = nextPiece > 0.0 ? std::clamp(nextPiece, smallest, std::abs(largest)) : std::abs(largest);
   piece = std::copysign(std::min(piece, std::abs(remaining)), largest);
   // The last piece before `remaining` ends takes what is left when that is at most 1.5 pieces.
   if (std::abs(remaining) <= 1.5 * std::abs(piece)) piece = remaining;
@@ -495,7 +496,7 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
                     : a.report.iterations >= options_.hardIterations ? 0.5 : 1.0;
       if (a.trial.onsetOvershoot > 0.0)  // aim at 0.6 of the overshoot limit
         grow = std::min(grow, std::max(0.5, 0.6 * options_.onsetOvershoot / a.trial.onsetOvershoot));
-      nextPiece_ = std::abs(piece) * grow;
+      nextPiece = std::abs(piece) * grow;
       return total;
     }
     if (!finest && !retried && cuts == 0 && a.reuseRatio > 0.0 && a.why == "Newton did not converge") {

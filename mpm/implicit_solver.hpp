@@ -88,7 +88,7 @@ class ImplicitSolver {
   // What a checkpoint stores besides the particles (mpm/implicit_checkpoint.hpp): with it and the
   // particles, a solver of the same scene continues bitwise as the one that was saved.
   struct SavedState {
-    double time = 0.0, loadFactor = 0.0, nextPiece = 0.0;
+    double time = 0.0, loadFactor = 0.0, nextPiece = 0.0, nextOpening = 0.0;
     long steps = 0;
     double externalWork = 0.0, internalWork = 0.0, dissipated = 0.0;
     long released = 0;
@@ -149,7 +149,8 @@ class ImplicitSolver {
   double internalWork_ = 0.0;  // sum over steps and particles of V (sigma_n + sigma_n+1)/2 : d eps (N mm)
   double time_ = 0.0;
   double lambda_ = 0.0;  // the load factor of indirect control
-  double nextPiece_ = 0.0;  // the adaptive piece (0: the largest)
+  double nextPiece_ = 0.0;    // the adaptive step of pseudo-time (0: the largest)
+  double nextOpening_ = 0.0;  // the adaptive step of indirect control's opening (mm; 0: the largest)
   long steps_ = 0;
 };
 

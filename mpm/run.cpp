@@ -22,15 +22,14 @@
 
 namespace ecm::mpm {
 
-namespace {
-
-// The component a driven condition loads along (the first prescribed one), for plots and peaks.
 int drivenComponent(const NodeCondition& c) {
   return (c.component[1].kind == Prescribed::Velocity || c.component[1].kind == Prescribed::Displacement) &&
                  !(c.component[0].kind == Prescribed::Velocity || c.component[0].kind == Prescribed::Displacement)
              ? 1
              : 0;
 }
+
+namespace {
 
 std::vector<double> historyRow(const Solver& s) {
   std::vector<double> row{s.time(), static_cast<double>(s.step())};

@@ -60,6 +60,8 @@ RunResult runScene(const Scene& scene, const RunOptions& options);
 
 // The columns of history.csv for a scene.
 std::vector<std::string> historyColumns(const Scene& scene);
+// The component a driven condition loads along (the first prescribed one), for plots and peaks.
+int drivenComponent(const NodeCondition& c);
 // The outputs both solvers write: the final particles (particles_final.csv: x, y, damage,
 // material, opening, normal, stress; atomically), the damage map of that file, and the
 // load-displacement PNG of history.csv (its first columns: time, step, each condition's

@@ -109,6 +109,8 @@ void validateImplicit(const Scene& s) {
   }
   requireRange("solver.control.indirect.step", c.step, 0.0, INFINITY, false, false);
   requireRange("solver.control.indirect.until", c.until, c.step, INFINITY, true, false);
+  requireRange("solver.control.indirect.from", c.from, 0.0, s.endTime, true, true);
+  if (c.from > 0.0) requireRange("solver.load_step", im.loadStep, 0.0, c.from, false, true);
 }
 
 void validateSolver(const Scene& s) {
@@ -145,9 +147,14 @@ void validateOutput(const Scene& s) {
       throw ValueError("stop_when.condition", "no condition is named '" + w.condition + "'");
     requireRange("stop_when.load_below", w.loadBelow, 0.0, 1.0, false, false);
     requireRange("stop_when.after_time", w.afterTime, 0.0, INFINITY, true, false);
-    if (!(w.afterTime < s.endTime))
-      throw ValueError("stop_when", "after_time is not before end_time: it would never stop the run");
-    if (!(s.outputInterval > 0.0)) throw ValueError("stop_when", "is checked at the output rows: needs output_interval > 0");
+    // Implicit runs under indirect control watch their progress: the pseudo-time to `from`, then
+    // `from` plus the opening (mm) (docs/implicit.md).
+    const auto& implicit = s.solver.implicit;
+    const double end = implicit && implicit->indirect ? implicit->indirect->from + implicit->indirect->until : s.endTime;
+    if (!(w.afterTime < end))
+      throw ValueError("stop_when", "after_time is not before the end of the run: it would never stop it");
+    if (!(s.outputInterval > 0.0) && !s.solver.implicit)  // implicit runs have a row per load step
+      throw ValueError("stop_when", "is checked at the output rows: needs output_interval > 0");
   }
 }
 

@@ -53,6 +53,7 @@ struct ImplicitSettings {
     std::vector<ControlTerm> terms;   // tau = sum of the terms
     double step = 0.0;                // d tau per load step (mm)
     double until = 0.0;               // tau at the end (mm)
+    double from = 0.0;                // pseudo-time (s) of the load steps before the control takes over (load_step)
   };
   std::optional<Indirect> indirect;
 };

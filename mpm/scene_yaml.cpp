@@ -123,10 +123,14 @@ SolverSettings readImplicitSolver(const YamlMap& m) {
     }
     ind.step = i.get<double>("step");
     ind.until = i.get<double>("until");
+    ind.from = i.getOr<double>("from", 0.0);
     i.finish();
     c.finish();
     im.indirect = ind;
-    m.reject("load_step", "is set by the indirect control's step");
+    if (ind.from > 0.0)
+      im.loadStep = m.get<double>("load_step");  // the steps of pseudo-time before `from`
+    else
+      m.reject("load_step", "is set by the indirect control's step (load_step goes with control.indirect.from > 0)");
   } else {
     im.loadStep = m.get<double>("load_step");
   }

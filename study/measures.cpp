@@ -156,6 +156,7 @@ LoadCurve loadCurve(const io::CsvTable& h, const std::string& condition) {
   };
   const std::size_t ux = column(condition + "_ux_mm"), uy = column(condition + "_uy_mm");
   const std::size_t rx = column(condition + "_rx_N"), ry = column(condition + "_ry_N");
+  const std::size_t dissipated = column("dissipated_Nmm");
   double most[2] = {0.0, 0.0};
   for (const auto& row : h.rows) most[0] = std::max(most[0], std::abs(row[ux])), most[1] = std::max(most[1], std::abs(row[uy]));
   const bool y = most[1] >= most[0];
@@ -163,8 +164,24 @@ LoadCurve loadCurve(const io::CsvTable& h, const std::string& condition) {
   for (const auto& row : h.rows) {
     c.displacement.push_back(row[y ? uy : ux]);
     c.load.push_back(row[y ? ry : rx]);
+    c.dissipated.push_back(row[dissipated]);
   }
   return c;
+}
+
+std::pair<double, double> dissipatedAtEqualDisplacement(const LoadCurve& run, const LoadCurve& ref) {
+  if (run.displacement.size() < 2 || ref.displacement.size() < 2 || run.dissipated.size() != run.displacement.size() ||
+      ref.dissipated.size() != ref.displacement.size())
+    return {NAN, NAN};
+  const double at = std::min(run.displacement.back(), ref.displacement.back());
+  const auto interpolate = [at](const LoadCurve& c) {
+    std::size_t j = 1;
+    while (j + 1 < c.displacement.size() && c.displacement[j] < at) ++j;
+    const double span = c.displacement[j] - c.displacement[j - 1];
+    const double s = span > 0.0 ? std::clamp((at - c.displacement[j - 1]) / span, 0.0, 1.0) : 1.0;
+    return c.dissipated[j - 1] + s * (c.dissipated[j] - c.dissipated[j - 1]);
+  };
+  return {interpolate(run), interpolate(ref)};
 }
 
 double postPeakCurveError(const LoadCurve& run, const LoadCurve& ref) {

@@ -298,7 +298,12 @@ class Executor {
     if (ref.available) {
       setMetric(r, "peak_load", relative(out.peakLoad, ref.peakLoad));
       setMetric(r, "peak_reaction", relative(out.peakReaction, ref.peakReaction));
-      setMetric(r, "dissipated_energy", relative(out.dissipated, ref.dissipated));
+      if (!study_.condition.empty()) {  // at equal displacement of the condition
+        const auto [mine, theirs] = dissipatedAtEqualDisplacement(curve, ref.curve);
+        setMetric(r, "dissipated_energy", relative(mine, theirs));
+      } else {
+        setMetric(r, "dissipated_energy", relative(out.dissipated, ref.dissipated));
+      }
       setMetric(r, "post_peak_curve", postPeakCurveError(curve, ref.curve));
     }
   }

@@ -34,7 +34,8 @@
 //
 // Metrics (signed relative errors): bar_vibration: period, amplitude; uniaxial_tension and point
 // runs: stress_path (max deviation / f_t'), dissipation, peak_stress; mpm runs: peak_load
-// (summary.json), peak_reaction (needs condition), dissipated_energy, post_peak_curve (needs
+// (summary.json), peak_reaction (needs condition), dissipated_energy (with a condition: at
+// the smaller of the two runs' last displacements of it; else at the ends), post_peak_curve (needs
 // condition: the largest |P - P_ref| over the softening branch as a fraction of the reference's
 // peak, postPeakCurveError below).
 //
@@ -208,8 +209,12 @@ UniaxialReference uniaxialTensionClosedForm(const MaterialParams& material, doub
 // along its driven component, the one whose displacement reaches the largest magnitude.
 struct LoadCurve {
   std::vector<double> displacement, load;  // mm, N
+  std::vector<double> dissipated;          // N mm (dissipated_Nmm), per row
 };
 LoadCurve loadCurve(const io::CsvTable& history, const std::string& condition);
+// The dissipated energy of two curves at the smaller of their last displacements (each
+// interpolated linearly; displacements increasing): {run, reference}, NAN when a curve has none.
+std::pair<double, double> dissipatedAtEqualDisplacement(const LoadCurve& run, const LoadCurve& reference);
 
 // The post-peak curve error: the largest |P - P_ref| over the softening branch, the
 // displacements past both peaks up to the smaller of the two last displacements (at the sample

@@ -172,6 +172,12 @@ TEST(StudyMeasures, PostPeakCurveError) {
   }
   EXPECT_NEAR(postPeakCurveError(run, ref), 300.0 / 1e4, 1e-12);
   EXPECT_NEAR(postPeakCurveError(ref, ref), 0.0, 1e-15);
+  // The dissipated energy at the smaller last displacement (4.05 mm): each curve interpolated.
+  for (const double d : ref.displacement) ref.dissipated.push_back(10.0 * d);
+  for (const double d : run.displacement) run.dissipated.push_back(11.0 * d);
+  const auto [mine, theirs] = dissipatedAtEqualDisplacement(run, ref);
+  EXPECT_NEAR(mine, 11.0 * 4.05, 1e-9);
+  EXPECT_NEAR(theirs, 10.0 * 4.05, 1e-9);
   LoadCurve early;  // ends before the reference's peak: no common branch
   early.displacement = {0.0, 0.5};
   early.load = {0.0, 5000.0};
