@@ -152,7 +152,7 @@ void validateOutput(const Scene& s) {
     const auto& implicit = s.solver.implicit;
     const double end = implicit && implicit->indirect ? implicit->indirect->from + implicit->indirect->until : s.endTime;
     if (!(w.afterTime < end))
-      throw ValueError("stop_when", "after_time is not before the end of the run: it would never stop it");
+      throw ValueError("stop_when", "after_time is not before end_time (under indirect control: from + until): it would never stop the run");
     if (!(s.outputInterval > 0.0) && !s.solver.implicit)  // implicit runs have a row per load step
       throw ValueError("stop_when", "is checked at the output rows: needs output_interval > 0");
   }
