@@ -1,5 +1,6 @@
 #include "mpm/scene_yaml.hpp"
 
+#include <algorithm>
 #include <map>
 
 #include "io/material_yaml.hpp"
@@ -104,7 +105,7 @@ SolverSettings readImplicitSolver(const YamlMap& m) {
   im.maxIterations = m.getOr<int>("max_iterations", im.maxIterations);
   im.maxHalvings = m.getOr<int>("max_halvings", im.maxHalvings);
   im.onsetOvershoot = m.getOr<double>("onset_overshoot", im.onsetOvershoot);
-  im.acceptTolerance = m.getOr<double>("accept_tolerance", im.acceptTolerance);
+  im.acceptTolerance = m.getOr<double>("accept_tolerance", std::max(im.acceptTolerance, im.tolerance));
   im.umfpack = m.getEnumOr("linear_solver", {"umfpack", "sparselu"}, available(LinearSolverKind::Umfpack) ? "umfpack" : "sparselu") ==
                "umfpack";
   if (m.has("control")) {

@@ -90,6 +90,12 @@ TEST(ImplicitScene, BadInputIsRefusedWithTheLineAndTheReason) {
     expectContains(e.what(), "tolerance");
     EXPECT_EQ(e.line, 25);
   }
+  {  // an accept_tolerance below the tolerance; without one, a loose tolerance is its own
+    expectContains(err(replaced(bar, "tolerance: 1e-6 ", "tolerance: 1e-4\n  accept_tolerance: 1e-5 ")).what(),
+                   "accept_tolerance");
+    const Scene loose = readScene(io::parseYaml(replaced(bar, "tolerance: 1e-6 ", "tolerance: 5e-3 "), "bar.yaml"));
+    EXPECT_EQ(loose.solver.implicit->acceptTolerance, 5e-3);
+  }
 }
 
 std::string fileText(const std::filesystem::path& path) {
