@@ -184,19 +184,7 @@ class ImplicitRun {
   // --- output ---
   void openOutputs() {
     const std::filesystem::path& dir = options_.outputDir;
-    if (options_.restart) {
-      try {
-        history_ = std::make_unique<io::CsvWriter>(dir / "history.csv", implicitColumns(scene_), book_.history);
-      } catch (const io::OutputError&) {
-        throw;
-      } catch (const std::runtime_error& e) {
-        throw CheckpointError("cannot continue from checkpoint '" + checkpointFile_.string() + "': " + e.what());
-      }
-    } else {
-      std::error_code ignored;  // a checkpoint of an earlier run in this folder no longer applies
-      std::filesystem::remove(checkpointFile_, ignored);
-      history_ = std::make_unique<io::CsvWriter>(dir / "history.csv", implicitColumns(scene_));
-    }
+    history_ = openHistory(dir, implicitColumns(scene_), checkpointFile_, options_.restart ? &book_.history : nullptr);
     if (options_.snapshots) {
       snapshots_ = std::make_unique<VtuSeries>(dir);
       if (options_.restart) snapshots_->resume(book_.snapshotTimes);

@@ -22,6 +22,22 @@
 
 namespace ecm::mpm {
 
+std::unique_ptr<io::CsvWriter> openHistory(const std::filesystem::path& dir, const std::vector<std::string>& columns,
+                                           const std::filesystem::path& checkpoint, const io::CsvWriter::Resume* resume) {
+  if (!resume) {
+    std::error_code ignored;  // a checkpoint of an earlier run in this folder no longer applies
+    std::filesystem::remove(checkpoint, ignored);
+    return std::make_unique<io::CsvWriter>(dir / "history.csv", columns);
+  }
+  try {
+    return std::make_unique<io::CsvWriter>(dir / "history.csv", columns, *resume);
+  } catch (const io::OutputError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    throw CheckpointError("cannot continue from checkpoint '" + checkpoint.string() + "': " + e.what());
+  }
+}
+
 int drivenComponent(const NodeCondition& c) {
   return (c.component[1].kind == Prescribed::Velocity || c.component[1].kind == Prescribed::Displacement) &&
                  !(c.component[0].kind == Prescribed::Velocity || c.component[0].kind == Prescribed::Displacement)
@@ -265,19 +281,7 @@ class Run {
   // --- output ---
   void openOutputs() {
     const std::filesystem::path& dir = options_.outputDir;
-    if (options_.restart) {
-      try {
-        history_ = std::make_unique<io::CsvWriter>(dir / "history.csv", historyColumns(scene_), book_.history);
-      } catch (const io::OutputError&) {
-        throw;
-      } catch (const std::runtime_error& e) {
-        throw CheckpointError("cannot continue from checkpoint '" + checkpointFile_.string() + "': " + e.what());
-      }
-    } else {
-      std::error_code ignored;  // a checkpoint of an earlier run in this folder no longer applies
-      std::filesystem::remove(checkpointFile_, ignored);
-      history_ = std::make_unique<io::CsvWriter>(dir / "history.csv", historyColumns(scene_));
-    }
+    history_ = openHistory(dir, historyColumns(scene_), checkpointFile_, options_.restart ? &book_.history : nullptr);
     if (options_.snapshots) {
       snapshots_ = std::make_unique<VtuSeries>(dir);
       if (options_.restart) snapshots_->resume(book_.snapshotTimes);

@@ -9,8 +9,11 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <string>
+#include <vector>
 
+#include "io/csv_writer.hpp"
 #include "mpm/particles.hpp"
 #include "mpm/scene.hpp"
 
@@ -60,6 +63,11 @@ RunResult runScene(const Scene& scene, const RunOptions& options);
 
 // The columns of history.csv for a scene.
 std::vector<std::string> historyColumns(const Scene& scene);
+// history.csv of a run in `dir`: continued from `resume` (a restart; a file that does not match
+// it is a CheckpointError naming `checkpoint`), or new, after removing a stale `checkpoint` of an
+// earlier run in the folder. Explicit and implicit runs open theirs with it.
+std::unique_ptr<io::CsvWriter> openHistory(const std::filesystem::path& dir, const std::vector<std::string>& columns,
+                                           const std::filesystem::path& checkpoint, const io::CsvWriter::Resume* resume);
 // The component a driven condition loads along (the first prescribed one), for plots and peaks.
 int drivenComponent(const NodeCondition& c);
 // The outputs both solvers write: the final particles (particles_final.csv: x, y, damage,
