@@ -25,8 +25,11 @@ using io::YamlMap;
 
 constexpr const char* kRefinement = "grid.refinement";
 constexpr const char* kTimeScale = "time_scale";
+constexpr const char* kScene = "scene";
 
-bool derivedKnob(const std::string& key) { return key == kRefinement || key == kTimeScale; }
+// Derived knobs: not key paths of the scene, but edits of it (the numeric ones) or the scene itself.
+bool numericKnob(const std::string& key) { return key == kRefinement || key == kTimeScale; }
+bool derivedKnob(const std::string& key) { return numericKnob(key) || key == kScene; }
 
 int lineOf(const YAML::Node& n, int fallback) {
   const YAML::Mark m = n.Mark();
@@ -78,12 +81,37 @@ double positiveNumber(const YamlMap& map, const std::string& key, const YAML::No
 
 }  // namespace
 
+SceneChoice readSceneChoice(const YAML::Node& value, const std::string& studyFile, int line) {
+  const std::filesystem::path folder = std::filesystem::path(studyFile).parent_path();
+  SceneChoice c;
+  std::string name;
+  if (value.IsScalar()) {
+    name = value.Scalar();
+  } else if (value.IsMap()) {
+    const YamlMap map(value, studyFile, "knobs.scene");
+    name = map.get<std::string>("file");
+    if (map.has("set")) c.set = readSettings(map.child("set"));
+    map.finish();
+  } else {
+    throw InputError(studyFile, lineOf(value, line), "key 'knobs.scene': expected a scene file or {file: NAME, set: {key path: value}}");
+  }
+  const std::filesystem::path file = name;
+  c.file = file.is_absolute() ? file : (folder / file).lexically_normal();
+  std::error_code ec;
+  if (name.empty() || !std::filesystem::is_regular_file(c.file, ec))
+    throw InputError(studyFile, lineOf(value, line), "key 'knobs.scene': no such file: " + c.file.string());
+  c.text = name;
+  for (const Setting& s : c.set) c.text += " " + s.key + "=" + valueText(s.value);
+  return c;
+}
+
 Study readStudy(const YamlMap& m) {
   Study s;
   s.file = m.file();
   s.name = m.getOr<std::string>("name", std::filesystem::path(m.file()).stem().string());
   s.kind = m.getEnumOr("kind", {"mpm", "point"}, "mpm") == "point" ? StudyKind::Point : StudyKind::Mpm;
-  const std::filesystem::path scene = m.get<std::string>("scene");
+  s.sceneAsWritten = m.get<std::string>("scene");
+  const std::filesystem::path scene = s.sceneAsWritten;
   s.scene = scene.is_absolute() ? scene : (m.directory() / scene).lexically_normal();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(s.scene, ec)) m.fail("scene", "no such file: " + s.scene.string());
@@ -94,14 +122,16 @@ Study readStudy(const YamlMap& m) {
   for (const Setting& k : readSettings(knobs)) {
     if (!k.value.IsSequence() || k.value.size() == 0)
       knobs.fail(k.key, "expected a non-empty sequence of values, e.g. [0.1, 0.3]");
-    if (derivedKnob(k.key) && s.kind != StudyKind::Mpm) knobs.fail(k.key, "applies to mpm scenes only");
+    if (numericKnob(k.key) && s.kind != StudyKind::Mpm) knobs.fail(k.key, "applies to mpm scenes only");
     Knob knob{k.key, {}, k.line};
+    const auto text = [&](const YAML::Node& v) { return k.key == kScene ? readSceneChoice(v, m.file(), k.line).text : valueText(v); };
     for (std::size_t i = 0; i < k.value.size(); ++i) {
       const YAML::Node v = k.value[i];
       if (v.IsNull()) throw InputError(m.file(), lineOf(v, k.line), "key 'knobs." + k.key + "': a value is empty");
-      if (derivedKnob(k.key)) positiveNumber(knobs, k.key, v);
+      if (numericKnob(k.key)) positiveNumber(knobs, k.key, v);
+      const std::string written = text(v);  // a scene value is read (and its file found) here
       for (const YAML::Node& earlier : knob.values)
-        if (sameValue(valueText(earlier), valueText(v)))
+        if (sameValue(text(earlier), written))
           throw InputError(m.file(), lineOf(v, k.line), "key 'knobs." + k.key + "': value " + valueText(v) + " is given twice");
       knob.values.push_back(v);
     }
@@ -143,7 +173,8 @@ Study readStudy(const YamlMap& m) {
     for (const Setting& r : s.referenceSettings) {
       const bool known = std::any_of(s.knobs.begin(), s.knobs.end(), [&](const Knob& k) { return k.key == r.key; });
       if (!known) run.fail(r.key, "is not a knob of the study (the reference run differs from the base in knobs only)");
-      if (derivedKnob(r.key)) positiveNumber(run, r.key, r.value);
+      if (numericKnob(r.key)) positiveNumber(run, r.key, r.value);
+      if (r.key == kScene) readSceneChoice(r.value, m.file(), r.line);
     }
   }
   std::vector<std::string> available = availableMetrics(s.kind, s.reference);
@@ -202,11 +233,14 @@ struct Choice {
 }  // namespace
 
 std::vector<PlannedRun> planStudy(const Study& study) {
-  const std::string baseText = readText(study.scene);
-  const std::string baseFile = study.scene.string();
-  auto base = [&] {
-    YAML::Node root = io::parseYaml(baseText, baseFile).node();
-    for (const Setting& s : study.set) {
+  // A run's document: its scene file (the `scene` knob's, or the base), the study's set: and the
+  // scene value's own set:.
+  auto base = [&](const SceneChoice* scene) {
+    const std::filesystem::path& file = scene ? scene->file : study.scene;
+    YAML::Node root = io::parseYaml(readText(file), file.string()).node();
+    std::vector<Setting> settings = study.set;
+    if (scene) settings.insert(settings.end(), scene->set.begin(), scene->set.end());
+    for (const Setting& s : settings) {
       try {
         setKeyPath(root, s.key, YAML::Clone(s.value));
       } catch (const std::invalid_argument& e) {
@@ -216,11 +250,16 @@ std::vector<PlannedRun> planStudy(const Study& study) {
     return root;
   };
   const std::size_t n = study.knobs.size();
+  const auto valueOf = [&](std::size_t k, const YAML::Node& v) {
+    return study.knobs[k].key == kScene ? readSceneChoice(v, study.file, study.knobs[k].line).text : valueText(v);
+  };
   std::vector<std::string> baseValues(n);
   {
-    const YAML::Node root = base();
+    const YAML::Node root = base(nullptr);
     for (std::size_t k = 0; k < n; ++k) {
-      if (derivedKnob(study.knobs[k].key)) {
+      if (study.knobs[k].key == kScene) {
+        baseValues[k] = study.sceneAsWritten;
+      } else if (derivedKnob(study.knobs[k].key)) {
         baseValues[k] = "1";
       } else {
         try {
@@ -254,7 +293,7 @@ std::vector<PlannedRun> planStudy(const Study& study) {
     choices.push_back({std::vector<std::optional<YAML::Node>>(n), false});
     for (std::size_t k = 0; k < n; ++k)
       for (const YAML::Node& v : study.knobs[k].values) {
-        if (sameValue(valueText(v), baseValues[k])) continue;
+        if (sameValue(valueOf(k, v), baseValues[k])) continue;
         Choice c{std::vector<std::optional<YAML::Node>>(n), false};
         c.values[k] = v;
         choices.push_back(std::move(c));
@@ -262,7 +301,7 @@ std::vector<PlannedRun> planStudy(const Study& study) {
   }
   auto texts = [&](const Choice& c) {
     std::vector<std::string> t(n);
-    for (std::size_t k = 0; k < n; ++k) t[k] = c.values[k] ? valueText(*c.values[k]) : baseValues[k];
+    for (std::size_t k = 0; k < n; ++k) t[k] = c.values[k] ? valueOf(k, *c.values[k]) : baseValues[k];
     return t;
   };
   auto same = [&](const std::vector<std::string>& a, const std::vector<std::string>& b) {
@@ -310,11 +349,15 @@ std::vector<PlannedRun> planStudy(const Study& study) {
         break;
       }
 
-    YAML::Node root = base();
-    for (int pass = 0; pass < 2; ++pass)  // plain key paths first, then the derived knobs
+    std::optional<SceneChoice> scene;
+    for (std::size_t k = 0; k < n; ++k)
+      if (c.values[k] && study.knobs[k].key == kScene) scene = readSceneChoice(*c.values[k], study.file, study.knobs[k].line);
+    const std::string baseFile = (scene ? scene->file : study.scene).string();
+    YAML::Node root = base(scene ? &*scene : nullptr);
+    for (int pass = 0; pass < 2; ++pass)  // plain key paths first, then the numeric derived knobs
       for (std::size_t k = 0; k < n; ++k) {
         const Knob& knob = study.knobs[k];
-        if (!c.values[k] || derivedKnob(knob.key) != (pass == 1)) continue;
+        if (!c.values[k] || knob.key == kScene || numericKnob(knob.key) != (pass == 1)) continue;
         try {
           if (knob.key == kRefinement) applyGridRefinement(root, *parseNumber(valueText(*c.values[k])));
           else if (knob.key == kTimeScale) applyTimeScale(root, *parseNumber(valueText(*c.values[k])));
@@ -337,7 +380,14 @@ std::vector<PlannedRun> planStudy(const Study& study) {
         for (const auto& mat : run.scene->materials)
           speed = std::max(speed, std::sqrt(pWaveModulus(mat.elastic) / mat.density));
         const mpm::Grid& g = run.scene->grid;
-        run.estimatedSteps = run.scene->endTime * speed / (run.scene->solver.cfl * std::min(g.cellSize[0], g.cellSize[1]));
+        if (const auto& implicit = run.scene->solver.implicit) {  // load steps at their largest (they adapt)
+          const auto& control = implicit->indirect;
+          const double ramp = control ? control->from : run.scene->endTime;
+          run.estimatedSteps = (implicit->loadStep > 0.0 ? std::ceil(ramp / implicit->loadStep) : 0.0) +
+                               (control ? std::ceil(control->until / control->step) : 0.0);
+        } else {
+          run.estimatedSteps = run.scene->endTime * speed / (run.scene->solver.cfl * std::min(g.cellSize[0], g.cellSize[1]));
+        }
         if (!study.condition.empty() && !findCondition(run.scene->conditions, study.condition))
           throw InputError(study.file, study.referenceLine, what + "the scene has no condition '" + study.condition + "'");
         if (study.reference == ReferenceKind::BarVibration) {

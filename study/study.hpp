@@ -21,6 +21,11 @@
 //     particles_per_cell: [1, 2, 3]
 //     grid.refinement: [1, 2, 4]   # derived: cells x r (rounded up), cell_size / r
 //     time_scale: [0.5, 1, 2]      # derived: every time of the loading x s (see applyTimeScale)
+//     scene:                       # derived: the scene file a run starts from (relative to this
+//       - ../den/den-4b-coarse.yaml  #   file; the base is `scene:` above), alone or with settings
+//       - {file: ../den/den-4b-coarse-implicit.yaml, set: {solver.control.indirect.step: 0.004}}
+//                                  #   of its own: explicit and implicit runs in one study, each
+//                                  #   with the knobs only its scheme has
 //   reference:                     # exactly one of closed_form, run and scene
 //     closed_form: bar_vibration   # mpm: fixed-free bar released with a uniform velocity
 //     condition: clamp             #   (its reaction is analysed: period and amplitude)
@@ -39,8 +44,10 @@
 // condition: the largest |P - P_ref| over the softening branch as a fraction of the reference's
 // peak, postPeakCurveError below).
 //
-// Key paths: map keys joined by dots, sequence entries by [i] (conditions[0].box.min). Plain
-// keys are written first, in the order given, then the derived knobs.
+// Key paths: map keys joined by dots, sequence entries by [i] (conditions[0].box.min). A run's
+// document is its scene file (the `scene` knob's value, or the base), then the study's `set:`,
+// then the scene value's own `set:`, then the plain keys in the order given, then the derived
+// knobs.
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
@@ -75,11 +82,23 @@ struct Setting {  // a key path and its value, with the study file line it came 
   int line = 1;
 };
 
+// A value of the `scene` knob: the scene file a run starts from and the settings written into it
+// before the other knobs. Written as a file name, or as {file: NAME, set: {key path: value}}.
+struct SceneChoice {
+  std::filesystem::path file;  // resolved against the study file's folder
+  std::vector<Setting> set;
+  std::string text;            // "NAME" or "NAME key=value ...": the run's value in labels and tables
+};
+// Reads a value of the `scene` knob (the study file's name and folder, for messages and paths);
+// io::InputError when the file does not exist or the value is malformed.
+SceneChoice readSceneChoice(const YAML::Node& value, const std::string& studyFile, int line);
+
 struct Study {
   std::string name;
   std::string file;  // the study file, for messages
   StudyKind kind = StudyKind::Mpm;
   std::filesystem::path scene;  // base scene
+  std::string sceneAsWritten;   // its name in the study file (the `scene` knob's base value)
   std::vector<Setting> set;     // written into the base scene for every run
   StudyDesign design = StudyDesign::Grid;
   std::vector<Knob> knobs;

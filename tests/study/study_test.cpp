@@ -307,6 +307,64 @@ TEST(Study, SceneReference) {
   expectContains(inputError([&] { parse(head + "reference: {scene: no-such-scene.yaml}\n", tmp); }).reason, "no such file");
 }
 
+// The `scene` knob: explicit and implicit runs in one study, each value a scene file with
+// settings of its own (the implicit load step here, a key the explicit scene would refuse).
+// The snap-back bar (data/mpm/bar-snapback-*.yaml) against its implicit solution at 1e-5 mm of
+// opening per load step: the weak row's strength f_t' A = 2.9 MPa x 20 mm^2 = 58 N is the peak
+// of both implicit runs (a load step that carried a point past its onset by more than 5 % is cut,
+// docs/implicit.md), so their peaks agree to a few per mille; the explicit run overshoots it
+// dynamically (its loading rate).
+TEST(Study, SceneKnobMixesSchemes) {
+  TempDir tmp;
+  const std::string implicitBar = kSource + "/data/mpm/bar-snapback-implicit.yaml";
+  const std::string explicitBar = kSource + "/data/mpm/bar-snapback-explicit.yaml";
+  const std::string text = "name: bar-schemes\nscene: " + implicitBar + "\nknobs:\n  scene:\n    - " + explicitBar +
+                           "\n    - {file: " + implicitBar +
+                           ", set: {solver.control.indirect.step: 4.0e-5, solver.control.indirect.until: 0.004}}\n"
+                           "reference: {scene: " + implicitBar + ", condition: top, metrics: [peak_reaction]}\n";
+  const Study study = parse(text, tmp);
+  const auto plan = planStudy(study);
+  ASSERT_EQ(plan.size(), 2u);
+  EXPECT_EQ(plan[0].label, "scene=" + explicitBar);
+  EXPECT_EQ(plan[1].label, "scene=" + implicitBar + " solver.control.indirect.step=4.0e-5 solver.control.indirect.until=0.004");
+  EXPECT_FALSE(plan[0].scene->solver.implicit);
+  ASSERT_TRUE(plan[1].scene->solver.implicit && plan[1].scene->solver.implicit->indirect);
+  EXPECT_DOUBLE_EQ(plan[1].scene->solver.implicit->indirect->step, 4e-5);
+  EXPECT_DOUBLE_EQ(plan[1].estimatedSteps, 100.0);  // 0.004 / 4e-5 load steps at their largest
+
+  StudyOptions o;
+  o.outputDir = tmp.path() / "out";
+  o.threads = 1;
+  o.isolate = false;
+  o.progress = false;
+  const StudyResult r = runStudy(study, plan, o);
+  ASSERT_TRUE(r.allCompleted);
+  EXPECT_NEAR(r.reference["peak_reaction_top_N"].get<double>(), 58.0, 0.05 * 58.0);
+  EXPECT_LT(std::abs(r.runs[1].metrics[0]), 5e-3);
+  EXPECT_GT(r.runs[0].metrics[0], std::abs(r.runs[1].metrics[0]));
+
+  // The value's settings are checked by its scene's reader; a missing file is refused at its line.
+  const std::string bad = "name: x\nscene: " + implicitBar + "\nknobs:\n  scene:\n    - {file: " + explicitBar +
+                          ", set: {solver.control.indirect.step: 4.0e-5}}\nreference: {scene: " + implicitBar + ", condition: top}\n";
+  const io::InputError e = inputError([&] { planStudy(parse(bad, tmp)); });
+  expectContains(e.reason, "run 1 (scene=" + explicitBar);
+  expectContains(e.reason, "bar-snapback-explicit.yaml");
+  const io::InputError missing = inputError([&] {
+    parse("name: x\nscene: " + implicitBar + "\nknobs:\n  scene: [" + explicitBar + ",\n    no-such.yaml]\nreference: {scene: " + implicitBar + "}\n", tmp);
+  });
+  EXPECT_EQ(missing.line, 5);  // the second value's
+  expectContains(missing.reason, "no such file");
+  expectContains(inputError([&] {
+                   parse("name: x\nscene: " + implicitBar + "\nknobs:\n  scene: [no-such.yaml]\nreference: {scene: " + implicitBar + "}\n", tmp);
+                 }).reason,
+                 "no such file");  // a single value is read too
+  expectContains(inputError([&] {
+                   parse("name: x\nscene: " + implicitBar + "\nknobs:\n  scene: [{file: " + explicitBar + ", sett: {}}]\nreference: {scene: " +
+                             implicitBar + "}\n", tmp);
+                 }).reason,
+                 "unknown key 'sett'");
+}
+
 // The enriched point under uniaxial tension against material/uniaxial_closed_form.hpp: the
 // recorded stress path converges with the increment size; the dissipation is exact at any size
 // (the update integrates int F dD exactly over each increment).
