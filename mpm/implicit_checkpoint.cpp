@@ -45,6 +45,11 @@ void writeImplicitCheckpoint(const std::filesystem::path& path, const ImplicitSo
     for (Eigen::Index i = 0; i < k.nonZeros(); ++i) e.put(static_cast<std::int32_t>(k.innerIndexPtr()[i]));
     for (Eigen::Index i = 0; i < k.nonZeros(); ++i) e.put(k.valuePtr()[i]);
   }
+  const std::vector<double> lastIncrement(s.lastIncrement.data(), s.lastIncrement.data() + s.lastIncrement.size());
+  e.count(lastIncrement.size());
+  e.array(lastIncrement);
+  e.put(s.lastLoadFactorIncrement);
+  e.put(s.lastOpening);
   checkpoint::putParticles(e, solver.particles());
   e.put(run.progress);
   e.put(run.nextSnapshot);
@@ -109,6 +114,11 @@ ImplicitBookkeeping readImplicitCheckpoint(const std::filesystem::path& path, Im
     s.factored = Eigen::Map<const Eigen::SparseMatrix<double>>(rows, rows, static_cast<Eigen::Index>(nnz), outer.data(),
                                                                inner.data(), values.data());
   }
+  std::vector<double> lastIncrement;
+  d.array(lastIncrement, d.count(sizeof(double)));
+  s.lastIncrement = Eigen::Map<const Eigen::VectorXd>(lastIncrement.data(), static_cast<Eigen::Index>(lastIncrement.size()));
+  s.lastLoadFactorIncrement = d.get<double>();
+  s.lastOpening = d.get<double>();
   checkpoint::getParticles(d, solver.editParticles(), solver.setup().materials.size(), where);
   run.progress = d.get<double>();
   run.nextSnapshot = d.get<double>();

@@ -25,8 +25,8 @@
 
 namespace ecm::mpm {
 
-// 2: the adaptive opening step, the stop_when peak
-inline constexpr std::uint32_t kImplicitCheckpointVersion = 2;
+// 2: the adaptive opening step, the stop_when peak; 3: the last step's increments (indirect control)
+inline constexpr std::uint32_t kImplicitCheckpointVersion = 3;
 
 // What the implicit run loop carries besides the solver.
 struct ImplicitBookkeeping {

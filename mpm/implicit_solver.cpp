@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "mpm/errors.hpp"
 #include "mpm/phases.hpp"
@@ -29,6 +30,16 @@ double prescribedIncrement(const ComponentCondition& c, double t, double dt) {
   return NAN;
 }
 
+// Newton proper (a factorisation at every iteration) has stalled when its relative residual did
+// not halve over the last kStallWindow iterations (docs/implicit.md, "Load steps"): converging,
+// it halves it at every iteration or two. (With a kept factorisation the test cost more
+// halvings than it saved: left to max_iterations there, as is the last halving's try.)
+constexpr int kStallWindow = 6;
+bool stalled(const std::vector<double>& residuals) {
+  const std::size_t n = residuals.size();
+  return n > kStallWindow && residuals[n - 1] > 0.5 * residuals[n - 1 - kStallWindow];
+}
+
 }  // namespace
 
 // One try at a step: its geometry, the prescribed components and loads, and Newton's iterate.
@@ -40,11 +51,13 @@ struct ImplicitSolver::Attempt {
   Eigen::VectorXd startForce;            // the internal forces at the step's start (du = 0), on its geometry
   Eigen::VectorXd direction;             // indirect control: the driven components' reference (mm per unit load factor)
   double dLambda = 0.0;                  // indirect control: the load factor's increment
+  double dTau = 0.0;                     // indirect control: the opening's increment
   Trial trial;                           // at du
   ImplicitStepReport report;
   SnapBackPolicy snapBack = SnapBackPolicy::Stop;
   double reuseRatio = 0.1;               // ImplicitOptions::reuseRatio, 0 after a failed attempt (Newton proper)
   int maxIterations = 25;                // ImplicitOptions::maxIterations, 4 times that at the last halving
+  bool lastResort = false;               // the last halving: no early stall test, its whole maxIterations
   bool stalled = false;                  // Newton ran out of iterations; du and trial hold its last iterate
   UpdateStatus failedStatus = UpdateStatus::Converged;  // of the material update that failed
   // Why it failed: the iteration, the relative residual and the particle (SIZE_MAX: none).
@@ -160,6 +173,7 @@ ImplicitSolver::SavedState ImplicitSolver::saved() const {
   for (const Stencil& st : geometry_.stencils) s.stencilBases.push_back(st.base);
   s.prescribed = geometry_.prescribed;
   if (luPattern_ >= 0 && luPattern_ == geometry_.patternBuilds) s.factored = factored_;
+  s.lastIncrement = lastIncrement_, s.lastLoadFactorIncrement = lastLoadFactorIncrement_, s.lastOpening = lastOpening_;
   return s;
 }
 
@@ -167,7 +181,10 @@ void ImplicitSolver::restore(const SavedState& s) {
   if (s.reactions.size() != conditions_.size() || s.conditionDisplacements.size() != conditions_.size())
     throw std::invalid_argument("it has " + std::to_string(s.reactions.size()) + " conditions, the scene " +
                                 std::to_string(conditions_.size()));
+  if (s.lastIncrement.size() != 0 && s.lastIncrement.size() != 2 * static_cast<Eigen::Index>(setup_.scene.grid.nodeCount()))
+    throw std::invalid_argument("its last increment does not fit the scene's grid");
   time_ = s.time, lambda_ = s.loadFactor, nextPiece_ = s.nextPiece, nextOpening_ = s.nextOpening, steps_ = s.steps;
+  lastIncrement_ = s.lastIncrement, lastLoadFactorIncrement_ = s.lastLoadFactorIncrement, lastOpening_ = s.lastOpening;
   totals_.externalWork = s.externalWork, internalWork_ = s.internalWork, totals_.dissipated = s.dissipated;
   totals_.released = s.released;
   for (std::size_t c = 0; c < conditions_.size(); ++c) {
@@ -263,6 +280,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
   if (a.snapBack != SnapBackPolicy::Release && a.trial.failed == SIZE_MAX && a.trial.onsetOvershoot > 1.5 * options_.onsetOvershoot)
     return a.fail(0, 0.0, "the predictor carried a point past its onset by " + std::to_string(a.trial.onsetOvershoot) + " of its strength");
   bool refactor = a.reuseRatio <= 0.0;
+  std::vector<double> residuals;  // relative, per iteration
   for (int it = 0;; ++it) {
     if (a.trial.failed != SIZE_MAX) return a.failInMaterial(it, a.trial, setup_, particles_);
     double relative = 0.0;
@@ -273,7 +291,8 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       a.report.residual = relative;
       return true;
     }
-    if (it >= a.maxIterations) {
+    residuals.push_back(relative);
+    if (it >= a.maxIterations || (a.reuseRatio <= 0.0 && !a.lastResort && stalled(residuals))) {
       a.stalled = true;  // a.du and a.trial hold the last iterate
       a.report.iterations = it;
       return a.fail(it, relative, "Newton did not converge");
@@ -322,8 +341,28 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
   const double cPrescribed = c.dot(a.direction);  // d tau per unit load factor through the driven components
   double dLambda = 0.0, previous = INFINITY;
   bool refactor = a.reuseRatio <= 0.0;
-  // Newton on (du_f, d lambda) with the bordered system, from du = 0 (the first iteration is the
-  // predictor): K_ff d_f + (K u^)_f d_lambda = r_f and c . (d_f + d_lambda u^) = d tau - c . du,
+  std::vector<double> residuals;  // relative, per iteration
+  Eigen::VectorXd y, kuAtY;  // y = -K_ff^-1 (K u^)_f, and the K u^ it was solved for
+  int factorizationsAtY = -1;
+  // The start: the last step's increments scaled to this step's opening (docs/implicit.md, "The
+  // extrapolated start"): it meets the control exactly, and Newton begins near the solution of a
+  // smooth path. The internal forces at du = 0 (for the work) are then evaluated apart.
+  bool extrapolated = false;
+  if (options_.extrapolate && lastOpening_ != 0.0 && lastIncrement_.size() == components) {
+    Trial zero;
+    evaluateTrial(setup_, particles_, geometry_, Eigen::VectorXd::Zero(components), false, a.snapBack, zero);
+    if (zero.failed != SIZE_MAX) return a.failInMaterial(0, zero, setup_, particles_);
+    a.startForce = zero.internalForce;
+    const double scale = dTau / lastOpening_;
+    for (int u = 0; u < n; ++u) {
+      const auto k = dofs.component[static_cast<std::size_t>(u)];
+      a.du[k] = scale * lastIncrement_[k];
+    }
+    dLambda = scale * lastLoadFactorIncrement_;
+    extrapolated = true;
+  }
+  // Newton on (du_f, d lambda) with the bordered system, from that start or from du = 0 (then the
+  // first iteration is the predictor): K_ff d_f + (K u^)_f d_lambda = r_f and c . (d_f + d_lambda u^) = d tau - c . du,
   // solved with one factorisation: d_f = a + d_lambda b, a = K_ff^-1 r_f, b = -K_ff^-1 (K u^)_f.
   // K_ff is refactorised as in attempt().
   for (int it = 0;; ++it) {
@@ -332,7 +371,7 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
     evaluateTrial(setup_, particles_, geometry_, du, false, a.snapBack, t, &a.direction);
     a.report.totalIterations++;
     if (t.failed != SIZE_MAX) return a.failInMaterial(it, t, setup_, particles_);
-    if (it == 0) a.startForce = t.internalForce;  // du = 0
+    if (it == 0 && !extrapolated) a.startForce = t.internalForce;  // du = 0
     Eigen::VectorXd r(n), ku(n);
     for (int u = 0; u < n; ++u) {
       const auto k = dofs.component[static_cast<std::size_t>(u)];
@@ -341,18 +380,21 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
     }
     const double reference = std::max({a.external.norm(), t.internalForce.norm(), 1e-300});
     const double relative = r.norm() / reference, g = dTau - c.dot(du);
-    if (it > 0 && relative <= options_.tolerance && std::abs(g) <= 1e-10 * std::abs(dTau)) {
+    if ((it > 0 || extrapolated) && relative <= options_.tolerance && std::abs(g) <= 1e-10 * std::abs(dTau)) {
       a.report.iterations = it;
       a.report.residual = relative;
       a.du = du;
       a.dLambda = dLambda;
+      a.dTau = dTau;
       return true;
     }
-    if (it >= a.maxIterations) {
+    residuals.push_back(relative);
+    if (it >= a.maxIterations || (a.reuseRatio <= 0.0 && !a.lastResort && stalled(residuals))) {
       a.stalled = true;  // the last iterate, as a converged one is kept
       a.report.iterations = it;
       a.du = du;
       a.dLambda = dLambda;
+      a.dTau = dTau;
       return a.fail(it, relative, "Newton did not converge");
     }
     if (it > 0 && r.norm() > a.reuseRatio * previous) refactor = true;
@@ -362,7 +404,11 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
       if (!factorize(t.tangent, a)) return a.fail(it, relative, "the tangent is singular");
       refactor = a.reuseRatio <= 0.0;
     }
-    const Eigen::VectorXd x = solve(r, a), y = -solve(ku, a);
+    // y depends on the factorisation and on K u^ only: solved again when either changed (K u^
+    // stays put while the driven conditions' points stay elastic).
+    const Eigen::VectorXd x = solve(r, a);
+    if (a.report.factorizations != factorizationsAtY || y.size() != n || ku != kuAtY)
+      y = -solve(ku, a), kuAtY = ku, factorizationsAtY = a.report.factorizations;
     if (!x.allFinite() || !y.allFinite()) return a.fail(it, relative, "the tangent is singular");
     double cx = 0.0, cy = 0.0;
     for (int u = 0; u < n; ++u) {
@@ -445,6 +491,7 @@ void ImplicitSolver::commit(const Attempt& a, double dt) {
   totals_.externalWork += external;
   internalWork_ += internal;
   totals_.released += t.released;
+  if (a.dTau != 0.0) lastIncrement_ = a.du, lastLoadFactorIncrement_ = a.dLambda, lastOpening_ = a.dTau;
   lambda_ += a.dLambda;
   time_ += dt;
   ++steps_;
@@ -468,6 +515,7 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
     const bool finest = cuts >= options_.maxCuts;
     a.reuseRatio = cuts > 0 || retried ? 0.0 : options_.reuseRatio;
     a.maxIterations = finest ? 4 * options_.maxIterations : options_.maxIterations;
+    a.lastResort = finest;
     a.snapBack = finest || snapBackCuts > 0 ? SnapBackPolicy::Release : SnapBackPolicy::Stop;
     bool ok = control ? attemptIndirect(*control, piece, a) : attempt(piece, a);
     // A piece whose Newton (proper) stalls below the acceptance tolerance is kept: its residual

@@ -25,6 +25,9 @@ struct ImplicitOptions {
   // factorisations"); the predictor of a step takes the last factorisation. 0: a factorisation
   // at every iteration (Newton's method proper).
   double reuseRatio = 0.1;
+  // Indirect control: a step's Newton starts from the last step's increments, scaled to its
+  // opening (docs/implicit.md, "The extrapolated start"); false: from du = 0.
+  bool extrapolate = true;
   // Adaptive pieces: a piece converged in at most `easyIterations` Newton iterations doubles the
   // next one, in at least `hardIterations` halves it; a piece whose trial carries a point past its
   // onset by more than `onsetOvershoot` of its strength is cut (docs/implicit.md, "Load steps").
@@ -98,6 +101,9 @@ class ImplicitSolver {
     std::vector<std::int32_t> stencilBases;
     std::vector<std::uint8_t> prescribed;
     Eigen::SparseMatrix<double> factored;
+    // Indirect control: the last step's increments (empty, 0: none).
+    Eigen::VectorXd lastIncrement;
+    double lastLoadFactorIncrement = 0.0, lastOpening = 0.0;
   };
   SavedState saved() const;
   // Throws std::invalid_argument when the state does not fit this solver's scene.
@@ -151,6 +157,10 @@ class ImplicitSolver {
   double lambda_ = 0.0;  // the load factor of indirect control
   double nextPiece_ = 0.0;    // the adaptive step of pseudo-time (0: the largest)
   double nextOpening_ = 0.0;  // the adaptive step of indirect control's opening (mm; 0: the largest)
+  // Indirect control: the last step's increments per node component, of the load factor and of
+  // the opening (0: none yet); the next step's Newton starts from them, scaled.
+  Eigen::VectorXd lastIncrement_;
+  double lastLoadFactorIncrement_ = 0.0, lastOpening_ = 0.0;
   long steps_ = 0;
 };
 

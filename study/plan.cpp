@@ -100,7 +100,7 @@ SceneChoice readSceneChoice(const YAML::Node& value, const std::string& studyFil
   std::error_code ec;
   if (name.empty() || !std::filesystem::is_regular_file(c.file, ec))
     throw InputError(studyFile, lineOf(value, line), "key 'knobs.scene': no such file: " + c.file.string());
-  c.text = name;
+  c.text = c.file.stem().string();
   for (const Setting& s : c.set) c.text += " " + s.key + "=" + valueText(s.value);
   return c;
 }
@@ -110,8 +110,7 @@ Study readStudy(const YamlMap& m) {
   s.file = m.file();
   s.name = m.getOr<std::string>("name", std::filesystem::path(m.file()).stem().string());
   s.kind = m.getEnumOr("kind", {"mpm", "point"}, "mpm") == "point" ? StudyKind::Point : StudyKind::Mpm;
-  s.sceneAsWritten = m.get<std::string>("scene");
-  const std::filesystem::path scene = s.sceneAsWritten;
+  const std::filesystem::path scene = m.get<std::string>("scene");
   s.scene = scene.is_absolute() ? scene : (m.directory() / scene).lexically_normal();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(s.scene, ec)) m.fail("scene", "no such file: " + s.scene.string());
@@ -258,7 +257,7 @@ std::vector<PlannedRun> planStudy(const Study& study) {
     const YAML::Node root = base(nullptr);
     for (std::size_t k = 0; k < n; ++k) {
       if (study.knobs[k].key == kScene) {
-        baseValues[k] = study.sceneAsWritten;
+        baseValues[k] = study.scene.stem().string();
       } else if (derivedKnob(study.knobs[k].key)) {
         baseValues[k] = "1";
       } else {

@@ -87,7 +87,8 @@ struct Setting {  // a key path and its value, with the study file line it came 
 struct SceneChoice {
   std::filesystem::path file;  // resolved against the study file's folder
   std::vector<Setting> set;
-  std::string text;            // "NAME" or "NAME key=value ...": the run's value in labels and tables
+  std::string text;            // "STEM" or "STEM key=value ...": the run's value in labels and tables
+                               // (two files of one stem are refused as one value given twice)
 };
 // Reads a value of the `scene` knob (the study file's name and folder, for messages and paths);
 // io::InputError when the file does not exist or the value is malformed.
@@ -98,7 +99,6 @@ struct Study {
   std::string file;  // the study file, for messages
   StudyKind kind = StudyKind::Mpm;
   std::filesystem::path scene;  // base scene
-  std::string sceneAsWritten;   // its name in the study file (the `scene` knob's base value)
   std::vector<Setting> set;     // written into the base scene for every run
   StudyDesign design = StudyDesign::Grid;
   std::vector<Knob> knobs;

@@ -178,6 +178,17 @@ TEST(ImplicitScene, AStoppedDisplacementControlledRunRestartsBitwiseOnAnotherThr
 // above that floor every step is kept and counted as relaxed (each looks hard, so the steps
 // shrink to the smallest); at the tolerance itself the run stops loudly, naming the step and
 // the residual. (Two iterations and two halvings keep it short.)
+// Run options without progress, plots or snapshots, on one thread, into `dir`.
+RunOptions quietOptions(const std::filesystem::path& dir) {
+  RunOptions options;
+  options.progress = false;
+  options.plot = false;
+  options.snapshots = false;
+  options.threads = 1;
+  options.outputDir = dir;
+  return options;
+}
+
 TEST(ImplicitScene, AStalledNewtonIsKeptBelowTheAcceptToleranceAndStopsTheRunAboveIt) {
   const std::string bar = replaced(replaced(shippedBar(), "until: 0.04 ", "until: 0.0002"),  // 20 elastic steps or more
                                    "  control:", "  max_iterations: 2\n  max_halvings: 2\n  control:");
@@ -205,6 +216,26 @@ TEST(ImplicitScene, AStalledNewtonIsKeptBelowTheAcceptToleranceAndStopsTheRunAbo
     expectContains(r.error, "Newton did not converge");
     EXPECT_TRUE(std::filesystem::exists(options.outputDir / "history.csv"));
   }
+}
+
+// Newton proper that stalls (here at round-off, below an unreachable tolerance) is given up after
+// its residual did not halve over 6 iterations, not after max_iterations (docs/implicit.md,
+// "Load steps"): a step is the first try's max_iterations (kept factorisation) plus 1, then at
+// most 8 or so for Newton proper, against 2 x 101 without the test.
+TEST(ImplicitScene, AStalledNewtonProperIsGivenUpEarly) {
+  const std::string bar = replaced(replaced(shippedBar(), "until: 0.04 ", "until: 0.0002"), "  control:", "  max_iterations: 60\n  control:");
+  ecm::test::TempDir dir;
+  RunOptions options = quietOptions(dir.path() / "kept");
+  const Scene scene = readScene(io::parseYaml(replaced(bar, "tolerance: 1e-6 ", "tolerance: 1e-16\n  accept_tolerance: 1e-9"), "bar.yaml"));
+  const RunResult r = runScene(scene, options);
+  ASSERT_TRUE(r.completed) << r.error;
+  const std::string summary = fileText(options.outputDir / "summary.json");
+  expectContains(summary, "\"relaxed_steps\": " + std::to_string(r.steps) + ",");
+  const auto at = summary.find("\"most_newton_iterations_in_a_step\": ");
+  ASSERT_NE(at, std::string::npos);
+  const int most = std::stoi(summary.substr(at + std::string("\"most_newton_iterations_in_a_step\": ").size()));
+  EXPECT_GT(most, 61);  // the first try ran to max_iterations
+  EXPECT_LT(most, 61 + 15);
 }
 
 TEST(ImplicitScene, VtuSnapshotsFollowTheOutputIntervalInTheProgressUnit) {

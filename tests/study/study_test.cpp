@@ -325,8 +325,8 @@ TEST(Study, SceneKnobMixesSchemes) {
   const Study study = parse(text, tmp);
   const auto plan = planStudy(study);
   ASSERT_EQ(plan.size(), 2u);
-  EXPECT_EQ(plan[0].label, "scene=" + explicitBar);
-  EXPECT_EQ(plan[1].label, "scene=" + implicitBar + " solver.control.indirect.step=4.0e-5 solver.control.indirect.until=0.004");
+  EXPECT_EQ(plan[0].label, "scene=bar-snapback-explicit");  // the file's stem
+  EXPECT_EQ(plan[1].label, "scene=bar-snapback-implicit solver.control.indirect.step=4.0e-5 solver.control.indirect.until=0.004");
   EXPECT_FALSE(plan[0].scene->solver.implicit);
   ASSERT_TRUE(plan[1].scene->solver.implicit && plan[1].scene->solver.implicit->indirect);
   EXPECT_DOUBLE_EQ(plan[1].scene->solver.implicit->indirect->step, 4e-5);
@@ -347,7 +347,7 @@ TEST(Study, SceneKnobMixesSchemes) {
   const std::string bad = "name: x\nscene: " + implicitBar + "\nknobs:\n  scene:\n    - {file: " + explicitBar +
                           ", set: {solver.control.indirect.step: 4.0e-5}}\nreference: {scene: " + implicitBar + ", condition: top}\n";
   const io::InputError e = inputError([&] { planStudy(parse(bad, tmp)); });
-  expectContains(e.reason, "run 1 (scene=" + explicitBar);
+  expectContains(e.reason, "run 1 (scene=bar-snapback-explicit");
   expectContains(e.reason, "bar-snapback-explicit.yaml");
   const io::InputError missing = inputError([&] {
     parse("name: x\nscene: " + implicitBar + "\nknobs:\n  scene: [" + explicitBar + ",\n    no-such.yaml]\nreference: {scene: " + implicitBar + "}\n", tmp);
