@@ -33,6 +33,17 @@ std::string barStudy(const std::string& knobs, const std::string& extra = "") {
          "reference: {closed_form: bar_vibration, condition: clamp}\n" + extra;
 }
 
+// A study's runs on one thread in this process (gtest has run OpenMP before: no fork here), quiet,
+// into TMP/out.
+StudyOptions inProcess(const TempDir& tmp) {
+  StudyOptions o;
+  o.outputDir = tmp.path() / "out";
+  o.threads = 1;
+  o.isolate = false;
+  o.progress = false;
+  return o;
+}
+
 Study parse(const std::string& text, const TempDir& tmp) {
   return loadStudyFile(tmp.write("study.yaml", text));
 }
@@ -200,11 +211,7 @@ TEST(Study, ElasticBarErrorsFallWithRefinement) {
   const Study study = parse(barStudy("  grid.refinement: [0.5, 1, 2]\n"), tmp);
   const auto plan = planStudy(study);
   ASSERT_EQ(plan.size(), 3u);
-  StudyOptions o;
-  o.outputDir = tmp.path() / "out";
-  o.threads = 1;
-  o.isolate = false;  // gtest has run OpenMP before: no fork here
-  o.progress = false;
+  StudyOptions o = inProcess(tmp);
   std::ostringstream table;
   o.table = &table;
   const StudyResult r = runStudy(study, plan, o);
@@ -248,11 +255,7 @@ TEST(Study, RunReferenceAndResume) {
   const auto plan = planStudy(study);
   ASSERT_EQ(plan.size(), 3u);
   EXPECT_TRUE(plan[2].reference);
-  StudyOptions o;
-  o.outputDir = tmp.path() / "out";
-  o.threads = 1;
-  o.isolate = false;
-  o.progress = false;
+  StudyOptions o = inProcess(tmp);
   const StudyResult first = runStudy(study, plan, o);
   ASSERT_TRUE(first.allCompleted);
   EXPECT_EQ(first.runs[2].error, 0.0);
@@ -287,11 +290,7 @@ TEST(Study, SceneReference) {
   const auto plan = planStudy(study);
   ASSERT_EQ(plan.size(), 2u);
   EXPECT_FALSE(plan[0].reference || plan[1].reference);
-  StudyOptions o;
-  o.outputDir = tmp.path() / "out";
-  o.threads = 1;
-  o.isolate = false;
-  o.progress = false;
+  StudyOptions o = inProcess(tmp);
   const StudyResult r = runStudy(study, plan, o);
   ASSERT_TRUE(r.allCompleted);
   EXPECT_TRUE(std::filesystem::exists(o.outputDir / "reference" / "history.csv"));
@@ -332,11 +331,7 @@ TEST(Study, SceneKnobMixesSchemes) {
   EXPECT_DOUBLE_EQ(plan[1].scene->solver.implicit->indirect->step, 4e-5);
   EXPECT_DOUBLE_EQ(plan[1].estimatedSteps, 100.0);  // 0.004 / 4e-5 load steps at their largest
 
-  StudyOptions o;
-  o.outputDir = tmp.path() / "out";
-  o.threads = 1;
-  o.isolate = false;
-  o.progress = false;
+  StudyOptions o = inProcess(tmp);
   const StudyResult r = runStudy(study, plan, o);
   ASSERT_TRUE(r.allCompleted);
   EXPECT_NEAR(r.reference["peak_reaction_top_N"].get<double>(), 58.0, 0.05 * 58.0);
