@@ -178,6 +178,9 @@ class TwoPhasePoint {
     return consistentTangent(band, eq.jacobian);
   }
   Tangent consistentTangent(const BandState& band, const Mat2& jacobian) const;
+  // The secant tangent: Eq. (10) with the band's damage frozen at its integrity (the unloading
+  // response). An implicit solver uses it where the consistent one makes Newton cycle.
+  Tangent secantTangent(const BandState& band) const { return consistentTangent(band, secantJacobian(band, band.integrity)); }
 
   // Fraction alpha in (0, 1] of the increment at which the onset criterion, Eq. (12) with
   // D = 0, is first met; nullopt if it is not met within the increment.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "mpm/errors.hpp"
+#include "mpm/newton_cycle.hpp"
 #include "mpm/phases.hpp"
 #include "mpm/seeding.hpp"
 
@@ -281,6 +282,9 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
     return a.fail(0, 0.0, "the predictor carried a point past its onset by " + std::to_string(a.trial.onsetOvershoot) + " of its strength");
   bool refactor = a.reuseRatio <= 0.0;
   std::vector<double> residuals;  // relative, per iteration
+  CycleGuard cycle;               // mpm/newton_cycle.hpp
+  double bestRelative = INFINITY;  // a stalled attempt keeps its best iterate
+  Eigen::VectorXd bestIterate;
   for (int it = 0;; ++it) {
     if (a.trial.failed != SIZE_MAX) return a.failInMaterial(it, a.trial, setup_, particles_);
     double relative = 0.0;
@@ -292,12 +296,22 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       return true;
     }
     residuals.push_back(relative);
+    if (relative < bestRelative) bestRelative = relative, bestIterate = a.du;
+    cycle.observe(a.trial.dissipation, relative);
     if (it >= a.maxIterations || (a.reuseRatio <= 0.0 && !a.lastResort && stalled(residuals))) {
-      a.stalled = true;  // a.du and a.trial hold the last iterate
+      a.stalled = true;  // a.du and a.trial hold the best iterate
       a.report.iterations = it;
+      if (bestRelative < relative) {
+        a.du = bestIterate;
+        evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, a.trial, nullptr, cycle.secantFlags());
+        if (a.trial.failed != SIZE_MAX) return a.failInMaterial(it, a.trial, setup_, particles_);
+        relative = bestRelative;
+      }
       return a.fail(it, relative, "Newton did not converge");
     }
-    if (refactor || luPattern_ != geometry_.patternBuilds) {
+    const bool fresh = refactor || luPattern_ != geometry_.patternBuilds;
+    cycle.solvedWithFreshTangent(fresh);
+    if (fresh) {
       assembleTangent(setup_, particles_, geometry_, a.trial);
       if (!factorize(a.trial.tangent, a)) return a.fail(it, relative, "the tangent is singular");
     }
@@ -312,7 +326,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
     for (int tries = 0; tries < 6; ++tries, alpha *= 0.5) {
       Trial t;
       const Eigen::VectorXd du = a.du + alpha * full;
-      evaluateTrial(setup_, particles_, geometry_, du, false, a.snapBack, t);
+      evaluateTrial(setup_, particles_, geometry_, du, false, a.snapBack, t, nullptr, cycle.secantFlags());
       if (t.failed != SIZE_MAX) continue;
       double rel = 0.0;
       const double norm = residualOf(t, rel).norm();
@@ -320,7 +334,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       if (norm <= (1.0 - 1e-4 * alpha) * r.norm()) break;
     }
     if (!std::isfinite(bestNorm)) {  // every length failed in the material: report the full step's failure
-      evaluateTrial(setup_, particles_, geometry_, a.du + full, false, a.snapBack, a.trial);
+      evaluateTrial(setup_, particles_, geometry_, a.du + full, false, a.snapBack, a.trial, nullptr, cycle.secantFlags());
       continue;
     }
     // A stale factorisation that no longer contracts the residual well enough is renewed.
@@ -344,6 +358,11 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
   std::vector<double> residuals;  // relative, per iteration
   Eigen::VectorXd y, kuAtY;  // y = -K_ff^-1 (K u^)_f, and the K u^ it was solved for
   int factorizationsAtY = -1;
+  // Points that make Newton cycle take their secant tangent (mpm/newton_cycle.hpp); a stalled
+  // attempt keeps its best iterate that meets the control.
+  CycleGuard cycle;
+  double bestRelative = INFINITY, bestDLambda = 0.0;
+  Eigen::VectorXd bestDu;
   // The start: the last step's increments scaled to this step's opening (docs/implicit.md, "The
   // extrapolated start"): it meets the control exactly, and Newton begins near the solution of a
   // smooth path. The internal forces at du = 0 (for the work) are then evaluated apart.
@@ -368,7 +387,7 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
   for (int it = 0;; ++it) {
     Trial& t = a.trial;
     const Eigen::VectorXd du = a.du + dLambda * a.direction;
-    evaluateTrial(setup_, particles_, geometry_, du, false, a.snapBack, t, &a.direction);
+    evaluateTrial(setup_, particles_, geometry_, du, false, a.snapBack, t, &a.direction, cycle.secantFlags());
     a.report.totalIterations++;
     if (t.failed != SIZE_MAX) return a.failInMaterial(it, t, setup_, particles_);
     if (it == 0 && !extrapolated) a.startForce = t.internalForce;  // du = 0
@@ -379,7 +398,8 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
       ku[u] = t.tangentTimesDirection[k];
     }
     const double reference = std::max({a.external.norm(), t.internalForce.norm(), 1e-300});
-    const double relative = r.norm() / reference, g = dTau - c.dot(du);
+    double relative = r.norm() / reference;
+    const double g = dTau - c.dot(du);
     if ((it > 0 || extrapolated) && relative <= options_.tolerance && std::abs(g) <= 1e-10 * std::abs(dTau)) {
       a.report.iterations = it;
       a.report.residual = relative;
@@ -389,17 +409,30 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
       return true;
     }
     residuals.push_back(relative);
+    if (std::abs(g) <= 1e-10 * std::abs(dTau) && relative < bestRelative)
+      bestRelative = relative, bestDu = a.du, bestDLambda = dLambda;
+    cycle.observe(t.dissipation, relative);
     if (it >= a.maxIterations || (a.reuseRatio <= 0.0 && !a.lastResort && stalled(residuals))) {
-      a.stalled = true;  // the last iterate, as a converged one is kept
+      a.stalled = true;  // the best iterate, as a converged one is kept
       a.report.iterations = it;
-      a.du = du;
+      if (bestDu.size() > 0 && bestRelative < relative) {
+        dLambda = bestDLambda;
+        a.du = bestDu + dLambda * a.direction;
+        relative = bestRelative;
+        evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, t, &a.direction, cycle.secantFlags());
+        if (t.failed != SIZE_MAX) return a.failInMaterial(it, t, setup_, particles_);
+      } else {
+        a.du = du;
+      }
       a.dLambda = dLambda;
       a.dTau = dTau;
       return a.fail(it, relative, "Newton did not converge");
     }
     if (it > 0 && r.norm() > a.reuseRatio * previous) refactor = true;
     previous = r.norm();
-    if (refactor || luPattern_ != geometry_.patternBuilds) {
+    const bool fresh = refactor || luPattern_ != geometry_.patternBuilds;
+    cycle.solvedWithFreshTangent(fresh);
+    if (fresh) {
       assembleTangent(setup_, particles_, geometry_, t);
       if (!factorize(t.tangent, a)) return a.fail(it, relative, "the tangent is singular");
       refactor = a.reuseRatio <= 0.0;

@@ -178,7 +178,8 @@ bool restoreGeometry(const StepSetup& setup, std::size_t particles, const std::v
 }
 
 void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometry& g, const Eigen::VectorXd& du,
-                   bool withTangent, SnapBackPolicy snapBack, Trial& t, const Eigen::VectorXd* direction) {
+                   bool withTangent, SnapBackPolicy snapBack, Trial& t, const Eigen::VectorXd* direction,
+                   const std::vector<std::uint8_t>* secant) {
   const std::size_t count = p.size();
   const int nx = setup.scene.grid.nodesX(), support = supportSize(setup.scene.solver.shapeFunction);
   t.strain.resize(count);
@@ -238,7 +239,7 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
     t.secondBand[i] = second;
     t.dissipation[i] = r.dissipation;
     released += r.released ? 1 : 0;
-    t.tangents[i] = r.tangent;
+    t.tangents[i] = secant && (*secant)[i] && band && !second && m.enriched() ? m.enriched()->secantTangent(*band) : r.tangent;
     t.elastic[i] = g.undamaged[i] && !band && !second && r.tangent == m.stiffness() ? 1 : 0;
   }
   t.released = released;

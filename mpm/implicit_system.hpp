@@ -77,9 +77,11 @@ struct Trial {
 // starts from its committed state; a failed update leaves `failed` set and the rest undefined.
 // With `direction` (per node component), also the tangent's product with it over all
 // components: the predictor's load from the prescribed increments.
+// With `secant` (per particle), the flagged one-band enriched points carry their secant tangent
+// (TwoPhasePoint::secantTangent) instead of the consistent one.
 void evaluateTrial(const StepSetup& setup, const Particles& particles, const StepGeometry& geometry,
                    const Eigen::VectorXd& du, bool withTangent, SnapBackPolicy snapBack, Trial& trial,
-                   const Eigen::VectorXd* direction = nullptr);
+                   const Eigen::VectorXd* direction = nullptr, const std::vector<std::uint8_t>* secant = nullptr);
 // K of a trial evaluated without it: the elastic part plus, in particle order, what the
 // points that are not elastic in the trial change.
 void assembleTangent(const StepSetup& setup, const Particles& particles, const StepGeometry& geometry, Trial& trial);

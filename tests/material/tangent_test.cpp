@@ -82,6 +82,35 @@ TEST_P(TangentTest, MatchesFiniteDifferencesInEveryRegime) {
   EXPECT_LT(tangentError(p.probe(), Voigt(0.0, 0.0, 3e-6), kDelta), kTol) << "shear";
 }
 
+// The secant tangent (Eq. (10) with the band's damage frozen), which the implicit MPM gives to
+// points that make Newton cycle: with the damage frozen the point is linear, so it is the exact
+// response to any unloading increment (not only the derivative at it), the tangent an unloading
+// update returns, and stiffer than the consistent tangent of the softening point it is taken at.
+TEST(SecantTangent, IsTheExactResponseToUnloadingAndStifferThanSoftening) {
+  Point p(params(ModelKind::Enriched));
+  const Voigt tension(1.0, 0.1, 0.2);
+  p.load(1.2e-4 * tension, 20);  // softening, well past onset
+  ASSERT_TRUE(p.point.band);
+  const TwoPhasePoint& model = *p.material.enriched();
+  const Tangent secant = model.secantTangent(*p.point.band);
+  const Voigt before = p.material.stress(p.point);
+  const UpdateResult softening = p.probe()(2e-6 * tension);
+  for (const double size : {1e-6, 1e-5, 4e-5}) {  // a finite unloading increment: linear response
+    const Voigt d = -size * tension;
+    const UpdateResult r = p.probe()(d);
+    ASSERT_TRUE(r.converged());
+    EXPECT_EQ(r.dissipation, 0.0) << size;
+    EXPECT_LT((r.stress - before - secant * d).norm(), 1e-9 * test::kFt) << size;
+    EXPECT_LT((r.tangent - secant).cwiseAbs().maxCoeff(), 1e-9 * test::kE) << size;
+  }
+  // Along the crack normal the secant carries the band's traction at its damage, the softening
+  // tangent less (negative on the descending branch).
+  const Vec2 n = p.point.band->crackNormal;
+  const Voigt nn(n[0] * n[0], n[1] * n[1], 2.0 * n[0] * n[1]);
+  EXPECT_GT(nn.dot(secant * nn), 0.0);
+  EXPECT_GT(nn.dot(secant * nn), nn.dot(softening.tangent * nn));
+}
+
 INSTANTIATE_TEST_SUITE_P(AllModels, TangentTest,
                          ::testing::Combine(::testing::Values(ModelKind::LinearElastic, ModelKind::SmearedCrack,
                                                               ModelKind::Enriched),

@@ -10,6 +10,7 @@
 
 #include "bar_closed_form.hpp"
 #include "mpm/implicit_solver.hpp"
+#include "mpm/newton_cycle.hpp"
 #include "test_scenes.hpp"
 
 namespace ecm::mpm::test {
@@ -141,6 +142,35 @@ TEST(Implicit, PureBendingConvergesToElasticityAtSecondOrder) {
 // The assembled tangent against central differences of the assembled internal force, on a
 // notched block of the paper's concrete pulled past cracking: cracked points loading and
 // unloading, and intact ones, all in the scene.
+// The cycle guard's rule (mpm/newton_cycle.hpp): points that switch between loading and
+// unloading while the residual grows after a fresh tangent are flagged for the secant tangent;
+// a stale tangent's growth flags nothing (it is the factorisation's age, not a kink); the flags
+// go once the residual has fallen kSettled times in a row.
+TEST(Implicit, TheCycleGuardFlagsThePointsThatSwitchWhileTheResidualGrows) {
+  CycleGuard guard;
+  const std::vector<double> a{0.0, 1e-3, 0.0, 2e-3}, b{1e-3, 1e-3, 0.0, 0.0}, c{0.0, 1e-3, 0.0, 0.0};
+  guard.solvedWithFreshTangent(true);
+  guard.observe(a, 1e-3);
+  EXPECT_EQ(guard.secantFlags(), nullptr);  // a first iterate: nothing to compare with
+  guard.solvedWithFreshTangent(false);
+  guard.observe(b, 2e-3);
+  EXPECT_EQ(guard.secantFlags(), nullptr) << "grew after a stale tangent";
+  guard.solvedWithFreshTangent(true);
+  guard.observe(a, 1e-3);
+  EXPECT_EQ(guard.secantFlags(), nullptr) << "fell";
+  guard.observe(b, 3e-3);  // grew after a fresh tangent: points 0 and 3 switched
+  ASSERT_NE(guard.secantFlags(), nullptr);
+  EXPECT_EQ(*guard.secantFlags(), (std::vector<std::uint8_t>{1, 0, 0, 1}));
+  guard.observe(c, 4e-3);  // point 0 switched back: still flagged, nothing new
+  EXPECT_EQ(*guard.secantFlags(), (std::vector<std::uint8_t>{1, 0, 0, 1}));
+  for (int k = 1; k < CycleGuard::kSettled; ++k) {
+    guard.observe(c, 4e-3 / (k + 1));
+    ASSERT_NE(guard.secantFlags(), nullptr) << k;
+  }
+  guard.observe(c, 1e-4);  // the kSettled-th fall
+  EXPECT_EQ(guard.secantFlags(), nullptr);
+}
+
 TEST(Implicit, TheAssembledTangentIsTheDerivativeOfTheInternalForce) {
   Scene s = notchedCrackingBlock();
   s.conditions[1].component[1].kind = Prescribed::Displacement;  // the top row: displacement in pseudo-time
