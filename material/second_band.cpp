@@ -238,90 +238,117 @@ UpdateResult TwoPhasePoint::releaseTwoBands(BandState& first, BandState& second,
   if (!predictor.converged) return res;
   double ratio[2];
   for (int i = 0; i < 2; ++i) ratio[i] = predictor.eq.band[i].drivingForce / surface[i].threshold;
-  const int scanned = ratio[1] > ratio[0] ? 1 : 0, other = 1 - scanned;
-  const Surface otherSurface = ratio[other] > 1.0 ? BandDamageLaw::envelope(surface[other]) : frozen[other];
-
-  struct Probe {
-    double x = 1.0, g = 0.0;
-    TwoBandSolve solve;
-  };
-  Vec4 guess = predictor.jumps;
-  const auto probe = [&](double x) {
-    Probe p;
-    p.x = x;
-    Surface s[2];
-    s[scanned] = frozenAt(x);
-    s[other] = otherSurface;
-    p.solve = solveTwoBands(first, second, s, eps, guess, tol);
-    p.g = p.solve.converged ? p.solve.eq.band[scanned].drivingForce / damageFunction(law_.law(), x) - 1.0
-                            : std::numeric_limits<double>::quiet_NaN();
-    if (p.solve.converged) guess = p.solve.jumps;
-    return p;
-  };
-  // hi: the last probe that converged (one that did not is stepped over, not bracketed).
-  Probe hi = probe(bands[scanned]->integrity);
-  double x = hi.x;
-  for (int k = 0; k < kMaxReleaseSteps && x > 1e-300; ++k) {
-    x *= kReleaseScanRatio;
-    Probe lo = probe(x);
-    ++res.iterations;
-    if (!lo.solve.converged) continue;
-    if (!(lo.g <= 0.0) || !(hi.g > 0.0)) {
-      hi = lo;
-      continue;
-    }
-    double la = std::log(lo.x), lb = std::log(hi.x), ga = lo.g, gb = hi.g;
-    Probe below = lo, above = hi, root = lo;  // the bracket's ends (g <= 0, g > 0)
-    int side = 0;
-    for (int it = 0; it < 100 && lb - la > 1e-15 * std::abs(lb) + 1e-300; ++it) {  // Illinois in log x
-      const double lc = (la * gb - lb * ga) / (gb - ga);
-      // Newton from the nearer end of the bracket (the last probe may lie on the other side);
-      // where it fails, bisect.
-      guess = (lc - la < lb - lc ? below : above).solve.jumps;
-      root = probe(std::exp(lc));
-      if (!root.solve.converged) {
-        guess = above.solve.jumps;
-        root = probe(std::exp(0.5 * (la + lb)));
-        if (!root.solve.converged) break;
-      }
+  // The scan of one band's damage; false if it finds no stable consistent state.
+  const auto scan = [&](const int scanned, const bool otherLoads) {
+    const int other = 1 - scanned;
+    const Surface otherSurface = otherLoads ? BandDamageLaw::envelope(surface[other]) : frozen[other];
+    struct Probe {
+      double x = 1.0, g = 0.0;
+      TwoBandSolve solve;
+    };
+    Vec4 guess = predictor.jumps;
+    const auto probe = [&](double x) {
+      Probe p;
+      p.x = x;
+      Surface s[2];
+      s[scanned] = frozenAt(x);
+      s[other] = otherSurface;
+      p.solve = solveTwoBands(first, second, s, eps, guess, tol);
+      p.g = p.solve.converged ? p.solve.eq.band[scanned].drivingForce / damageFunction(law_.law(), x) - 1.0
+                              : std::numeric_limits<double>::quiet_NaN();
+      if (p.solve.converged) guess = p.solve.jumps;
+      return p;
+    };
+    // hi: the last probe that converged (one that did not is stepped over, not bracketed).
+    Probe hi = probe(bands[scanned]->integrity);
+    double x = hi.x;
+    for (int k = 0; k < kMaxReleaseSteps && x > 1e-300; ++k) {
+      x *= kReleaseScanRatio;
+      Probe lo = probe(x);
       ++res.iterations;
-      const double l = std::log(root.x);
-      if (!(std::abs(root.g) > 1e-14)) break;
-      if (root.g < 0.0) {
-        la = l, ga = root.g, below = root;
-        if (side == -1) gb *= 0.5;
-        side = -1;
-      } else {
-        lb = l, gb = root.g, above = root;
-        if (side == +1) ga *= 0.5;
-        side = +1;
+      if (!lo.solve.converged) continue;
+      if (!(lo.g <= 0.0) || !(hi.g > 0.0)) {
+        hi = lo;
+        continue;
       }
-    }
-    if (!root.solve.converged) {
+      double la = std::log(lo.x), lb = std::log(hi.x), ga = lo.g, gb = hi.g;
+      Probe below = lo, above = hi, root = lo;  // the bracket's ends (g <= 0, g > 0)
+      int side = 0;
+      for (int it = 0; it < 100 && lb - la > 1e-15 * std::abs(lb) + 1e-300; ++it) {  // Illinois in log x
+        const double lc = (la * gb - lb * ga) / (gb - ga);
+        // Newton from the nearer end of the bracket (the last probe may lie on the other side);
+        // where it fails, bisect.
+        guess = (lc - la < lb - lc ? below : above).solve.jumps;
+        root = probe(std::exp(lc));
+        if (!root.solve.converged) {
+          guess = above.solve.jumps;
+          root = probe(std::exp(0.5 * (la + lb)));
+          if (!root.solve.converged) break;
+        }
+        ++res.iterations;
+        const double l = std::log(root.x);
+        if (!(std::abs(root.g) > 1e-14)) break;
+        if (root.g < 0.0) {
+          la = l, ga = root.g, below = root;
+          if (side == -1) gb *= 0.5;
+          side = -1;
+        } else {
+          lb = l, gb = root.g, above = root;
+          if (side == +1) ga *= 0.5;
+          side = +1;
+        }
+      }
+      if (!root.solve.converged) {
+        hi = lo;
+        continue;
+      }
+      // Polish with the regular update at zero increment: continuity, consistency, stability.
+      BandState trial[2] = {first, second};
+      for (int i = 0; i < 2; ++i) trial[i].jump = root.solve.jumps.segment<2>(2 * i);
+      trial[scanned].integrity = root.x;
+      if (otherSurface.envelope) trial[other].integrity = std::min(trial[other].integrity, root.solve.eq.band[other].integrity);
+      Voigt s = eps;
+      UpdateOptions polish(SnapBackPolicy::Stop, tangent);
+      const UpdateResult r = updateTwoBands(trial[0], trial[1], s, Voigt::Zero(), polish);
+      if (r.converged()) {
+        res = r;
+        res.iterations += r.iterations;
+        res.released = true;
+        res.dissipation = first.volumeFraction * law_.dissipation(first.integrity, trial[0].integrity) +
+                          second.volumeFraction * law_.dissipation(second.integrity, trial[1].integrity);
+        first = trial[0];
+        second = trial[1];
+        strain = eps;
+        return true;
+      }
       hi = lo;
-      continue;
     }
-    // Polish with the regular update at zero increment: continuity, consistency, stability.
-    BandState trial[2] = {first, second};
-    for (int i = 0; i < 2; ++i) trial[i].jump = root.solve.jumps.segment<2>(2 * i);
-    trial[scanned].integrity = root.x;
-    if (otherSurface.envelope) trial[other].integrity = std::min(trial[other].integrity, root.solve.eq.band[other].integrity);
-    Voigt s = eps;
-    UpdateOptions polish(SnapBackPolicy::Stop, tangent);
-    const UpdateResult r = updateTwoBands(trial[0], trial[1], s, Voigt::Zero(), polish);
-    if (r.converged()) {
-      res = r;
-      res.iterations += r.iterations;
-      res.released = true;
-      res.dissipation = first.volumeFraction * law_.dissipation(first.integrity, trial[0].integrity) +
-                        second.volumeFraction * law_.dissipation(second.integrity, trial[1].integrity);
-      first = trial[0];
-      second = trial[1];
-      strain = eps;
+    return false;
+  };
+  // The band that loads most, the other on its envelope if it loads too. If that finds no stable
+  // state and the other loads too: the same band with the other frozen, then the other band.
+  // Where a second band opens next to a nearly failed first band, both load at the predictor and
+  // the stable state has the first band unloading (docs/model.md, "A second band").
+  const int preferred = ratio[1] > ratio[0] ? 1 : 0, other = 1 - preferred;
+  const bool otherLoads = ratio[other] > 1.0;
+  struct Try {
+    int scanned;
+    bool otherLoads;
+  };
+  std::vector<Try> tries{{preferred, otherLoads}};
+  if (otherLoads) tries.insert(tries.end(), {{preferred, false}, {other, ratio[preferred] > 1.0}});
+  int iterations = 0;
+  for (const Try& t : tries) {
+    res.iterations = 0;
+    if (scan(t.scanned, t.otherLoads)) {
+      res.iterations += iterations;
       return res;
     }
-    hi = lo;
+    iterations += res.iterations;
   }
+  res = UpdateResult{};
+  res.status = UpdateStatus::SnapBack;
+  res.iterations = iterations;
   return res;
 }
 

@@ -355,6 +355,44 @@ TEST(SecondBand, ASecondBandOpeningAboveItsOnsetIsReleased) {
   EXPECT_LT(principalStresses(r.stress).first, principalStresses(before).first) << "the release drops the stress";
 }
 
+TEST(SecondBand, ASecondBandNextToANearlyFailedFirstBandIsReleasedWithTheFirstUnloading) {
+  // A state recorded in the implicit DEN 4b medium mesh with the option (H = 1.25 mm, delta =
+  // 0.1048 mm, particle 47765): the first band (D = 0.986) under shear, sigma_tt just below f_t'.
+  // A strain increment of 4e-8 opens the second band, which snaps back; at the frozen predictor
+  // both bands load, and the stable state has the first band unloading and the second released
+  // (docs/model.md, "A second band"). Release scanning only the band that loads most (the
+  // second, with the first on its envelope) found no stable state, and the implicit run stopped.
+  const Material m(concrete(SecondBandOption::Orthogonal));
+  const EffectiveSize size = EffectiveSize::fixed(1.25);
+  MaterialPoint p;
+  p.strain = Voigt(-0.00022576504315333678, 0.00033550133909901394, -0.00057191640317330074);
+  BandState b;
+  b.crackNormal = Vec2(0.41479848920331264, 0.90991329991084835);
+  b.jump = Vec2(-0.00066847705142248498, 0.00034147807579605437);
+  b.onsetStrain = Voigt(-9.1192989674645275e-06, 7.4314208372700693e-05, 9.6024124480191536e-05);
+  b.integrity = 0.013812157466833572;
+  b.volumeFraction = 0.04;
+  p.band = b;
+  const Voigt increment(4.9945959675592102e-09, 8.93030623354039e-09, -3.6880500666782864e-08);
+  MaterialPoint reported = p;
+  EXPECT_EQ(m.update(reported, increment, size, UpdateOptions(SnapBackPolicy::Stop)).status, UpdateStatus::SnapBack);
+  EXPECT_FALSE(reported.secondBand);
+  const UpdateResult r = m.update(p, increment, size, UpdateOptions(SnapBackPolicy::Release));
+  ASSERT_TRUE(r.converged()) << toString(r.status);
+  EXPECT_TRUE(r.released);
+  ASSERT_TRUE(p.secondBand);
+  EXPECT_GT(p.secondBand->damage(), 0.5);
+  // The first band loads only over the part of the increment before the second band's onset.
+  EXPECT_LE(p.band->integrity, b.integrity);
+  EXPECT_GT(p.band->integrity, (1.0 - 1e-4) * b.integrity);
+  EXPECT_GE(r.dissipation, 0.0);
+  EXPECT_LE(continuityResidual(m, p), 1e-9 * test::kFt);
+  // A consistent state: the next zero increment is an ordinary converged update, no release.
+  const UpdateResult again = m.update(p, Voigt::Zero(), size, UpdateOptions(SnapBackPolicy::Stop));
+  EXPECT_TRUE(again.converged()) << toString(again.status);
+  EXPECT_FALSE(again.released);
+}
+
 TEST(SecondBand, RefusesAnEffectiveSizeWithoutRoomForTwoBands) {
   const Material m(concrete(SecondBandOption::Orthogonal));
   MaterialPoint p;

@@ -26,10 +26,13 @@ conditions:
 )";
 
 TEST(SceneYaml, ShippedSecondBandScenesDifferOnlyInTheMaterialOption) {
-  for (const char* mesh : {"coarse", "medium", "fine"}) {
+  for (const std::string mesh : {"coarse", "medium", "fine", "coarse-implicit", "medium-implicit"}) {
     const auto dir = std::filesystem::path(ECM_SOURCE_DIR) / "data" / "den";
-    const Scene off = loadSceneFile(dir / (std::string("den-4b-") + mesh + ".yaml"));
-    const Scene on = loadSceneFile(dir / (std::string("den-4b-") + mesh + "-second-band.yaml"));
+    const std::string scheme = mesh.ends_with("-implicit") ? "-implicit" : "";
+    const std::string size = mesh.substr(0, mesh.size() - scheme.size());
+    const Scene off = loadSceneFile(dir / ("den-4b-" + mesh + ".yaml"));
+    const Scene on = loadSceneFile(dir / ("den-4b-" + size + "-second-band" + scheme + ".yaml"));
+    EXPECT_EQ(on.solver.implicit.has_value(), off.solver.implicit.has_value()) << mesh;
     ASSERT_EQ(on.materials.size(), 1u);
     EXPECT_EQ(on.materials[0].secondBand, SecondBandOption::Orthogonal) << mesh;
     EXPECT_EQ(off.materials[0].secondBand, SecondBandOption::Off) << mesh;
