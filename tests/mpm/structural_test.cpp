@@ -75,6 +75,19 @@ TEST(Structural, TensionBlockSceneCracksAtTheLigament) {
               j["cracked_particles"].get<int>(), r.wallTime);
 }
 
+// A shipped DEN scene (data/den/NAME.yaml) run in full on 2 threads into `out`, without snapshots,
+// plots or progress.
+RunResult runDenScene(const std::string& name, const std::filesystem::path& out) {
+  const Scene s = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data" / "den" / (name + ".yaml"));
+  RunOptions o;
+  o.outputDir = out;
+  o.threads = 2;
+  o.snapshots = false;
+  o.plot = false;
+  o.progress = false;
+  return runScene(s, o);
+}
+
 // The DEN (Nooru-Mohamed's panel, load path 4b), each mesh run in full: the mesh-objectivity
 // and quasi-static criteria of docs/den.md ("The three meshes"), against the coarse run's values
 // (scripts/den.sh, 2 threads, summary.json: peak 18518.4 N, dissipated 980.1 N mm; the medium
@@ -84,15 +97,7 @@ class DenFullRun : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(DenFullRun, MeetsTheMeshObjectivityAndQuasiStaticCriteria) {
   TempDir tmp;
-  const Scene s = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data" / "den" /
-                                (std::string("den-4b-") + GetParam() + ".yaml"));
-  RunOptions o;
-  o.outputDir = tmp.path();
-  o.threads = 2;
-  o.snapshots = false;
-  o.plot = false;
-  o.progress = false;
-  const RunResult r = runScene(s, o);
+  const RunResult r = runDenScene(std::string("den-4b-") + GetParam(), tmp.path());
   ASSERT_TRUE(r.completed) << r.error;
   const io::CsvTable h = io::readCsv(tmp.path() / "history.csv");
   const auto column = [&](const std::string& name) {
@@ -131,14 +136,7 @@ class DenImplicitRun : public ::testing::TestWithParam<ImplicitDen> {};
 
 TEST_P(DenImplicitRun, GoesBelowATenthOfItsPeakInEquilibrium) {
   TempDir tmp;
-  const Scene s = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data" / "den" / (std::string(GetParam().scene) + ".yaml"));
-  RunOptions o;
-  o.outputDir = tmp.path();
-  o.threads = 2;
-  o.snapshots = false;
-  o.plot = false;
-  o.progress = false;
-  const RunResult r = runScene(s, o);
+  const RunResult r = runDenScene(GetParam().scene, tmp.path());
   ASSERT_TRUE(r.completed) << r.error;
   const auto j = nlohmann::json::parse(readFile(tmp.path() / "summary.json"));
   ASSERT_TRUE(j.contains("ended_by_stop_when_at_load_N")) << "the run should end by P < 10 % of its peak";
