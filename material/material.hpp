@@ -80,14 +80,15 @@ class Material {
   UpdateResult update(MaterialPoint& point, const Voigt& strainIncrement, const EffectiveSize& size,
                       const UpdateOptions& options = {}) const;
   // The closed-form stress, where there is one: an elastic point, or an intact enriched point
-  // that cannot reach onset (TwoPhasePoint::surelyIntact), with a finite stress. Then strain and
-  // stress are updated and it returns true; otherwise nothing changes (the caller takes update()).
+  // that does not reach onset in this increment (TwoPhasePoint::staysIntact), with a finite
+  // stress. Then strain and stress are updated and it returns true; otherwise nothing changes
+  // (the caller takes update()).
   // Inline: the explicit MPM calls it for nearly every point of every step.
   bool closedFormStress(const Voigt& increment, bool cracked, Voigt& strain, Voigt& stress) const {
     if (params_.model == ModelKind::SmearedCrack || (params_.model == ModelKind::Enriched && cracked)) return false;
     const Voigt end = strain + increment;
     const Voigt s = stiffness_ * end;  // Eq. (4) with no band
-    if (!s.allFinite() || (params_.model == ModelKind::Enriched && !std::get_if<TwoPhasePoint>(&model_)->surelyIntact(s)))
+    if (!s.allFinite() || (params_.model == ModelKind::Enriched && !std::get_if<TwoPhasePoint>(&model_)->staysIntact(s)))
       return false;
     strain = end;
     stress = s;

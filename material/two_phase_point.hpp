@@ -7,6 +7,7 @@
 #include <string>
 
 #include "material/band_damage_law.hpp"
+#include "material/driving_force.hpp"
 #include "material/effective_size.hpp"
 
 namespace ecm {
@@ -121,6 +122,12 @@ class TwoPhasePoint {
   // (explicit MPM calls it inline, without building an UpdateResult).
   bool surelyIntact(const Voigt& s) const {
     return onsetBound_ * (s[0] * s[0] + s[1] * s[1] + 2.0 * s[2] * s[2]) < law_.onsetDrivingForce();
+  }
+  // Whether an intact point whose elastic stress ends its increment at s stays intact: the cheap
+  // bound, else Y(s) < F(D = 0) of Eq. (12) itself: the test onsetFraction() makes first, so a
+  // point that passes it would take no other path through updateIntact() either.
+  bool staysIntact(const Voigt& s) const {
+    return surelyIntact(s) || drivingForceValue(s, law_.compliance()) < law_.onsetDrivingForce();
   }
   UpdateResult updateCracked(BandState& band, Voigt& strain, const Voigt& strainIncrement,
                              UpdateOptions options = {}) const;

@@ -53,42 +53,57 @@ ChunkOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid,
   const auto [lo, hi] = t.order.plannedBases(c);
   ChunkOutcome r;
   BaseSpan span;
-  for (std::size_t i = first; i < last; ++i) {
-    Stencil s;
-    expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
-    const detail::Gathered at = detail::gatherParticle<F, true>(s, nx, grid);
-    const Vec2 vp = flip * (p.velocity[i] + at.velocityChange) + pic * at.velocity;
-    const Vec2 x = p.position[i] + dt * at.velocity;
-    p.velocity[i] = vp;
-    p.position[i] = x;
-    if (!(vp.allFinite() && x.allFinite())) {
-      if (r.notFinite == kNoParticle) r.notFinite = i;
-      continue;
+  // A block of particles at a time: first each one's gather, move and closed-form stress, then
+  // the block's scatter. The gathers of a block do not wait on each other's scatters, so the
+  // processor overlaps them; the scatter still adds to every node in particle order.
+  constexpr std::size_t kBlock = 32;
+  Voigt sig[kBlock];             // the closed-form stresses, for the scatter (not reloaded after the store)
+  std::uint32_t scatters[kBlock];// the block's particles that scatter now, in index order
+  for (std::size_t b = first; b < last; b += kBlock) {
+    const std::size_t end = std::min(last, b + kBlock);
+    std::size_t count = 0;
+    for (std::size_t i = b; i < end; ++i) {
+      Stencil s;
+      expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
+      const detail::Gathered at = detail::gatherParticle<F, true>(s, nx, grid);
+      const Vec2 vp = flip * (p.velocity[i] + at.velocityChange) + pic * at.velocity;
+      const Vec2 x = p.position[i] + dt * at.velocity;
+      p.velocity[i] = vp;
+      p.position[i] = x;
+      if (!(vp.allFinite() && x.allFinite())) {
+        if (r.notFinite == kNoParticle) r.notFinite = i;
+        continue;
+      }
+      const Voigt d = detail::strainIncrement(at, dt);
+      Voigt& stress = sig[count];
+      const bool closedForm = materials[p.material[i]].closedFormStress(d, p.band[i] >= 0, p.strain[i], stress);
+      if (!closedForm) {
+        p.strainIncrement[i] = d;
+        deferred.push_back(static_cast<std::uint32_t>(i));
+      }
+      StencilAt next;
+      if (!locateStencil<F>(t.grid, t.invCell, t.halfWidth, x, next)) {
+        r.leftGrid = true;  // reported by the next step's scatterState, as the separate transfers do
+        if (closedForm) p.stress[i] = stress;
+        continue;
+      }
+      p.stencilAt[i] = next;
+      span.add(next.base);
+      if (next.base < lo || next.base >= hi) {  // far: scatters after the colours (scatterDeferred)
+        far.push_back(static_cast<std::uint32_t>(i));
+        if (closedForm) p.stress[i] = stress;
+        continue;
+      }
+      if (closedForm) scatters[count++] = static_cast<std::uint32_t>(i);
     }
-    const Voigt d = detail::strainIncrement(at, dt);
-    Voigt sig;  // the closed-form stress, kept in registers for the scatter below
-    const bool closedForm = materials[p.material[i]].closedFormStress(d, p.band[i] >= 0, p.strain[i], sig);
-    if (!closedForm) {
-      p.strainIncrement[i] = d;
-      deferred.push_back(static_cast<std::uint32_t>(i));
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::uint32_t i = scatters[k];
+      Stencil s;
+      expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
+      detail::scatterParticle<F, true, true>(s, nx, p.mass[i], p.velocity[i], p.volume[i], sig[k], t.gravity,
+                                             t.withGravity, out);
+      p.stress[i] = sig[k];
     }
-    StencilAt next;
-    if (!locateStencil<F>(t.grid, t.invCell, t.halfWidth, x, next)) {
-      r.leftGrid = true;  // reported by the next step's scatterState, as the separate transfers do
-      if (closedForm) p.stress[i] = sig;
-      continue;
-    }
-    p.stencilAt[i] = next;
-    span.add(next.base);
-    if (next.base < lo || next.base >= hi) {  // far: scatters after the colours (scatterDeferred)
-      far.push_back(static_cast<std::uint32_t>(i));
-      if (closedForm) p.stress[i] = sig;
-      continue;
-    }
-    if (!closedForm) continue;
-    expandStencil<F>(next, t.invCell, t.halfWidth, s);
-    detail::scatterParticle<F, true, true>(s, nx, p.mass[i], vp, p.volume[i], sig, t.gravity, t.withGravity, out);
-    p.stress[i] = sig;  // stored after its use: a reload right after the store stalls
   }
   measured = span.rows(nx);
   return r;

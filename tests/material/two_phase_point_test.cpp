@@ -5,8 +5,10 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "enriched_uniaxial.hpp"
+#include "material/material.hpp"
 #include "material/uniaxial_closed_form.hpp"
 
 namespace ecm {
@@ -173,6 +175,46 @@ TEST(TwoPhasePoint, OnsetIsSplitAtTheExactPoint) {
   EXPECT_LE((once.band->onsetStrain - twice.band->onsetStrain).norm(), 1e-15);
   EXPECT_NEAR(once.band->integrity, twice.band->integrity, 1e-9);
   EXPECT_LE((once.band->crackNormal - twice.band->crackNormal).norm(), 1e-9);
+}
+
+TEST(TwoPhasePoint, TheClosedFormStressIsTakenExactlyWhereTheUpdateOpensNoBand) {
+  // Material::closedFormStress (the explicit MPM's fast path) must take every intact point that
+  // Material::update would leave intact, with the same strain and stress, and no other: the
+  // exact onset test of Eq. (12), not only its cheap bound (which refuses, for one, every point
+  // under compression, where Y = 0). Random strains from 0.1 to 10 times the onset strain in
+  // every direction and sign, from a prestrained state.
+  MaterialParams p;
+  p.model = ModelKind::Enriched;
+  p.elastic = {test::kE, test::kNu, Hypothesis::PlaneStress};
+  p.tensileStrength = test::kFt;
+  p.softeningModulus = test::kEp;
+  p.softeningExponent = test::kN;
+  p.bandWidth = test::kBandWidth;
+  const Material m(p);
+  const auto size = EffectiveSize::fixed(10.0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), decade(-1.0, 1.0);
+  const double onset = test::kFt / test::kE;
+  int closedForm = 0, boundRefused = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Voigt start = onset * std::pow(10.0, decade(rng)) * Voigt(unit(rng), unit(rng), unit(rng)).normalized();
+    const Voigt increment = 0.1 * onset * Voigt(unit(rng), unit(rng), unit(rng));
+    if (!(m.enriched()->intactDrivingForce(start) < m.enriched()->bandLaw().onsetDrivingForce())) continue;  // intact start
+    Voigt strain = start, stress;
+    const bool closed = m.closedFormStress(increment, false, strain, stress);
+    MaterialPoint point;
+    point.strain = start;
+    const UpdateResult r = m.update(point, increment, size);
+    ASSERT_TRUE(r.converged());
+    EXPECT_EQ(closed, !point.band) << start.transpose() << " + " << increment.transpose();
+    if (!closed) continue;
+    ++closedForm;
+    boundRefused += m.enriched()->surelyIntact(stress) ? 0 : 1;
+    EXPECT_LE((strain - point.strain).norm(), 1e-16 * point.strain.norm());
+    EXPECT_LE((stress - r.stress).norm(), 1e-15 * r.stress.norm());
+  }
+  EXPECT_GT(closedForm, 1000);
+  EXPECT_GT(boundRefused, 100);  // the cases the cheap bound alone would have sent to update()
 }
 
 TEST(TwoPhasePoint, ClosedFormSecantSolveInvertsTheSecantJacobian) {
