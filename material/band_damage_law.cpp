@@ -15,8 +15,7 @@ BandDamageLaw::BandDamageLaw(const BandDamageParams& p)
     : law_((p.validate(), p.law())),
       stiffness_(elasticStiffness(p.elastic)),
       compliance_(elasticCompliance(p.elastic)),
-      onsetY_(damageFunction(law_, 1.0)),
-      sumOfModuli_(law_.youngsModulus + law_.softeningModulus) {}
+      onsetY_(damageFunction(law_, 1.0)) {}
 
 BandResponse BandDamageLaw::evaluate(const LoadingSurface& surface, const Voigt& strain, bool loadingTangent) const {
   const double x0 = surface.integrity, threshold = surface.threshold;

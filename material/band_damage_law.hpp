@@ -50,14 +50,6 @@ class BandDamageLaw {
     const double xn = std::pow(integrity, law_.softeningExponent);
     return {integrity, damageFunction(law_, integrity, xn), false, xn};
   }
-  // A lower bound of F(x0), Eq. (13), without its pow: F falls as x^n grows and x^n <= 1, so
-  // F(x0) >= f_t'^2/(2E) [(E + E_p) / (E x0 + E_p)]^2, less 1e-12 relative for round-off. It is
-  // within 2 E_p / (E x0) of F(x0): unless the band has nearly failed, an unloading band is told
-  // by it alone.
-  double thresholdLowerBound(double integrity) const {
-    const double g = sumOfModuli_ / (law_.youngsModulus * integrity + law_.softeningModulus);
-    return (1.0 - 1e-12) * onsetY_ * g * g;
-  }
   // The same surface, but evaluate() follows the monotonic loading envelope: x solves F(x) = Y
   // without the irreversibility cap, with the loading tangent. Smooth across the surface, it is
   // the branch a damage corrector iterates on (no loading/unloading kink inside Newton).
@@ -91,7 +83,6 @@ class BandDamageLaw {
   Tangent stiffness_;
   Tangent compliance_;
   double onsetY_;
-  double sumOfModuli_;  // E + E_p
 };
 
 }  // namespace ecm

@@ -202,11 +202,12 @@ UpdateResult TwoPhasePoint::predictCorrect(BandState& b, Voigt& strain, const Vo
     ++res.iterations;
   }
   // The loading surface F(x0) >= F(1): a band whose Y is below onset (a closed or barely open
-  // crack), or below the lower bound of F(x0), is unloading without evaluating F (a pow).
+  // crack) is unloading without evaluating F (a pow).
   const double y = drivingForceValue(aBand, law_.compliance());
-  const bool surelyUnloading = y <= law_.onsetDrivingForce() || y <= law_.thresholdLowerBound(x0);
-  const BandDamageLaw::LoadingSurface surface = surelyUnloading ? BandDamageLaw::LoadingSurface{} : law_.loadingSurface(x0);
-  if (surelyUnloading || y <= surface.threshold) {
+  const bool belowOnset = y <= law_.onsetDrivingForce();
+  const BandDamageLaw::LoadingSurface surface =
+      belowOnset ? BandDamageLaw::LoadingSurface{x0, law_.onsetDrivingForce()} : law_.loadingSurface(x0);
+  if (y <= surface.threshold) {
     res.residual = residual.norm();
     res.stress = stressOf(aBand);
     if (!(res.residual <= tol)) {

@@ -1,8 +1,8 @@
 // The USL step in one pass over the particles (mpm/step.cpp): each point gathers from the
 // updated grid, moves, takes its closed-form stress (Material::closedFormStress), locates its new
-// stencil and scatters its mass, momentum and force into the next step's grid at once, while its
-// fields are in cache. Separate transfers read every particle twice per step, and the step is
-// bound by memory traffic, not arithmetic.
+// stencil and scatters its mass, momentum and force into the next step's grid at once (a block
+// of 32 points at a time), while its fields are in cache. Separate transfers read every particle
+// twice per step, and the step is bound by memory traffic, not arithmetic.
 //
 // The pass runs chunk by chunk in the scatter order of mpm/scatter_order.hpp, planned at its
 // start. Points whose stress is not closed-form (cracked, near onset, smeared) are deferred:

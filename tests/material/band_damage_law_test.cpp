@@ -108,29 +108,5 @@ TEST(BandDamageLaw, DrivingForceValueIsBitwiseTheFullEvaluation) {
   }
 }
 
-TEST(BandDamageLaw, ThresholdLowerBoundIsBelowTheLoadingSurfaceAndCloseToIt) {
-  // The cracked update tells unloading by thresholdLowerBound(x0) before it evaluates F(x0)
-  // (a pow): the bound must never exceed F(x0), Eq. (13), or a loading band would be taken as
-  // unloading. With a = E_p / E it is within 1 - 2 a / x0 of F(x0) (x^n <= 1 in the numerator
-  // of the ratio (1 + a)(x + a x^n) / ((1 + a x^n)(x + a)) >= x / (x + a)).
-  const BandDamageLaw law(test::paperBand());
-  const DamageLawParams& p = law.law();
-  const double a = p.softeningModulus / p.youngsModulus;
-  int checked = 0;
-  for (double x = 1.0; x > 1e-300; x *= 0.93) {
-    for (const double xi : {x, 1.0 - x * 1e-3, 1.0 - x}) {
-      if (!(xi > 0.0 && xi <= 1.0)) continue;
-      const double f = damageFunction(p, xi), bound = law.thresholdLowerBound(xi);
-      EXPECT_LE(bound, f) << xi;
-      if (xi >= 1e-2) {
-        EXPECT_GE(bound, (1.0 - 2.0 * a / xi) * f) << xi;
-      }
-      ++checked;
-    }
-  }
-  EXPECT_GT(checked, 20000);
-  EXPECT_EQ(law.thresholdLowerBound(1.0), (1.0 - 1e-12) * law.onsetDrivingForce());
-}
-
 }  // namespace
 }  // namespace ecm
