@@ -20,6 +20,18 @@ inline EnrichedParams paperEnriched(double nu = kNu, Hypothesis hyp = Hypothesis
 
 inline DamageLawParams concreteShape(double n = kN) { return {kE, kFt, 0.0, n}; }
 
+// The DEN concrete as an enriched material (plane stress), as the scenes declare it.
+inline MaterialParams paperConcreteMaterial() {
+  MaterialParams p;
+  p.model = ModelKind::Enriched;
+  p.elastic = {kE, kNu, Hypothesis::PlaneStress};
+  p.tensileStrength = kFt;
+  p.softeningModulus = kEp;
+  p.softeningExponent = kN;
+  p.bandWidth = kBandWidth;
+  return p;
+}
+
 // The three phases of the mesoscale RVE, Table 1 (h = 0.005 mm, n = 0.179).
 struct RvePhase {
   const char* name;

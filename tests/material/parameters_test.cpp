@@ -9,16 +9,7 @@
 namespace ecm {
 namespace {
 
-MaterialParams concrete() {
-  MaterialParams p;
-  p.model = ModelKind::Enriched;
-  p.elastic = {test::kE, test::kNu, Hypothesis::PlaneStress};
-  p.tensileStrength = test::kFt;
-  p.softeningModulus = test::kEp;
-  p.softeningExponent = test::kN;
-  p.bandWidth = test::kBandWidth;
-  return p;
-}
+MaterialParams concrete() { return test::paperConcreteMaterial(); }
 
 void expectRejected(MaterialParams p, const std::string& name, const std::string& range) {
   try {

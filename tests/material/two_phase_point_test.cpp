@@ -183,14 +183,7 @@ TEST(TwoPhasePoint, TheClosedFormStressIsTakenExactlyWhereTheUpdateOpensNoBand) 
   // exact onset test of Eq. (12), not only its cheap bound (which refuses, for one, every point
   // under compression, where Y = 0). Random strains from 0.1 to 10 times the onset strain in
   // every direction and sign, from a prestrained state.
-  MaterialParams p;
-  p.model = ModelKind::Enriched;
-  p.elastic = {test::kE, test::kNu, Hypothesis::PlaneStress};
-  p.tensileStrength = test::kFt;
-  p.softeningModulus = test::kEp;
-  p.softeningExponent = test::kN;
-  p.bandWidth = test::kBandWidth;
-  const Material m(p);
+  const Material m(test::paperConcreteMaterial());
   const auto size = EffectiveSize::fixed(10.0);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0), decade(-1.0, 1.0);
