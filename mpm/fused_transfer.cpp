@@ -43,14 +43,42 @@ TransferSetup setupOf(const StepSetup& s, const ScatterOrder& order) {
   return {s.scene.grid, s.invCell, s.halfWidth, s.scene.solver.gravity, s.scene.solver.gravity.squaredNorm() > 0.0, order};
 }
 
+// The particle arrays the fused pass reads and writes, as plain pointers taken once per chunk:
+// through the vectors, every store into one array made the compiler load the others' data
+// pointers again (it cannot tell that a store of a double does not move a vector).
+struct PassArrays {
+  Vec2* __restrict position;
+  Vec2* __restrict velocity;
+  const double* __restrict mass;
+  const double* __restrict volume;
+  Voigt* __restrict strain;
+  Voigt* __restrict stress;
+  Voigt* __restrict strainIncrement;
+  const std::uint8_t* __restrict material;
+  const std::int32_t* __restrict band;
+  StencilAt* __restrict stencilAt;
+};
+
+PassArrays arraysOf(Particles& p) {
+  return {p.position.data(), p.velocity.data(), p.mass.data(),   p.volume.data(), p.strain.data(),
+          p.stress.data(),   p.strainIncrement.data(), p.material.data(), p.band.data(), p.stencilAt.data()};
+}
+
 template <ShapeFunction F>
-ChunkOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid, Particles& p, std::size_t c, double dt,
-                                 double flip, const Material* materials, ScatterTarget out, RowSpan& measured,
-                                 std::vector<std::uint32_t>& deferred, std::vector<std::uint32_t>& far) {
+ChunkOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid, Particles& particles, std::size_t c,
+                                 double dt, double flip, const Material* materials, ScatterTarget out,
+                                 RowSpan& measured, std::vector<std::uint32_t>& deferred,
+                                 std::vector<std::uint32_t>& far) {
   const int nx = t.grid.nodesX();
   const double pic = 1.0 - flip;
-  const auto [first, last] = t.order.range(c, p.size());
+  const auto [first, last] = t.order.range(c, particles.size());
   const auto [lo, hi] = t.order.plannedBases(c);
+  const PassArrays p = arraysOf(particles);
+  const detail::GatherSource from = detail::sourceOf(grid);
+  // Local copies, for the same reason: loaded once, not after every store.
+  const Grid geometry = t.grid;
+  const Vec2 invCell = t.invCell, halfWidth = t.halfWidth, gravity = t.gravity;
+  const bool withGravity = t.withGravity;
   ChunkOutcome r;
   BaseSpan span;
   // A block of particles at a time: first each one's gather, move and closed-form stress, then
@@ -64,8 +92,8 @@ ChunkOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid,
     std::size_t count = 0;
     for (std::size_t i = b; i < end; ++i) {
       Stencil s;
-      expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
-      const detail::Gathered at = detail::gatherParticle<F, true>(s, nx, grid);
+      expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
+      const detail::Gathered at = detail::gatherParticle<F, true>(s, nx, from);
       const Vec2 vp = flip * (p.velocity[i] + at.velocityChange) + pic * at.velocity;
       const Vec2 x = p.position[i] + dt * at.velocity;
       p.velocity[i] = vp;
@@ -82,7 +110,7 @@ ChunkOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid,
         deferred.push_back(static_cast<std::uint32_t>(i));
       }
       StencilAt next;
-      if (!locateStencil<F>(t.grid, t.invCell, t.halfWidth, x, next)) {
+      if (!locateStencil<F>(geometry, invCell, halfWidth, x, next)) {
         r.leftGrid = true;  // reported by the next step's scatterState, as the separate transfers do
         if (closedForm) p.stress[i] = stress;
         continue;
@@ -99,9 +127,9 @@ ChunkOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid,
     for (std::size_t k = 0; k < count; ++k) {
       const std::uint32_t i = scatters[k];
       Stencil s;
-      expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
-      detail::scatterParticle<F, true, true>(s, nx, p.mass[i], p.velocity[i], p.volume[i], sig[k], t.gravity,
-                                             t.withGravity, out);
+      expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
+      detail::scatterParticle<F, true, true>(s, nx, p.mass[i], p.velocity[i], p.volume[i], sig[k], gravity,
+                                             withGravity, out);
       p.stress[i] = sig[k];
     }
   }

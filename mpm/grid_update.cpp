@@ -10,7 +10,8 @@ namespace ecm::mpm {
 
 namespace {
 
-double sign(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
+// Without a branch: the sign of a vibrating node's velocity is not predictable.
+double sign(double v) { return static_cast<double>(static_cast<int>(v > 0.0) - static_cast<int>(v < 0.0)); }
 
 // Prescribed velocity of a component over [t, t + dt], or NaN when the component is free.
 double prescribed(const ComponentCondition& c, double t, double dt) {

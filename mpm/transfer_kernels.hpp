@@ -86,8 +86,16 @@ struct Gathered {
   double lxx = 0.0, lxy = 0.0, lyx = 0.0, lyy = 0.0;
 };
 
+// Where a gather reads (the grid's updated velocities), as plain pointers.
+struct GatherSource {
+  const Vec2* velocity;
+  const Vec2* velocityChange;
+};
+
+inline GatherSource sourceOf(const GridFields& g) { return {g.velocity.data(), g.velocityChange.data()}; }
+
 template <ShapeFunction F, bool WithStrain>
-inline Gathered gatherParticle(const Stencil& s, int nx, const GridFields& grid) {
+inline Gathered gatherParticle(const Stencil& s, int nx, GatherSource grid) {
   constexpr int S = supportSize(F);
   Gathered g;
   for (int j = 0; j < S; ++j) {
@@ -105,6 +113,11 @@ inline Gathered gatherParticle(const Stencil& s, int nx, const GridFields& grid)
     }
   }
   return g;
+}
+
+template <ShapeFunction F, bool WithStrain>
+inline Gathered gatherParticle(const Stencil& s, int nx, const GridFields& grid) {
+  return gatherParticle<F, WithStrain>(s, nx, sourceOf(grid));
 }
 
 // The strain increment of the step from the velocity gradient (engineering shear).
