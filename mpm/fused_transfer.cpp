@@ -274,10 +274,13 @@ void scatterDeferred(const StepSetup& setup, Particles& particles, GridFields& g
   const TransferSetup tr = setupOf(setup, order);
   const ScatterTarget target = detail::targetOf(grid);
   withShapeFunction(setup.scene.solver.shapeFunction, [&]<ShapeFunction F>() {
-    forEachChunkByColour(order, setup.threads, [&](std::size_t c, int) {
-      const auto [begin, end] = fused.chunkDeferred[c];
-      scatterList<F, false>(tr, particles, c, fused.deferred.data() + begin, fused.deferred.data() + end, target);
-    });
+    forEachChunkByColour(
+        order, setup.threads,
+        [&](std::size_t c, int) {
+          const auto [begin, end] = fused.chunkDeferred[c];
+          scatterList<F, false>(tr, particles, c, fused.deferred.data() + begin, fused.deferred.data() + end, target);
+        },
+        GroupSchedule::Dynamic);  // the deferred points sit in the cracked rows
     scatterList<F, false>(tr, particles, kNoParticle, order.far.data(), order.far.data() + order.far.size(), target);
   });
 }

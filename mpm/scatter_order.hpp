@@ -75,19 +75,36 @@ struct BaseSpan {
   RowSpan rows(int nodesX) const { return lo > hi ? RowSpan{} : RowSpan{lo / nodesX, hi / nodesX}; }
 };
 
+// How the groups of a colour are shared among the threads. Static: each thread takes the same
+// contiguous share of every colour's groups, so it scatters into the same band of grid rows at
+// every step, and the grid update (which splits the nodes statically too, mpm/ordered_sum.hpp)
+// finds those rows in its own cache: with a dynamic share the other core held half of them and
+// the grid phase of a 2-thread run took twice as long as on one thread (docs/performance.md).
+// Dynamic: for passes whose cost sits in a few groups (the deferred, cracked points).
+enum class GroupSchedule { Static, Dynamic };
+
 // Runs body(chunk, thread) for every chunk, colour after colour; the groups of a colour run in
-// parallel (dynamic schedule: chunks differ in cost), the chunks of a group in index order, and
-// a colour starts when the previous one is done.
+// parallel, the chunks of a group in index order, and a colour starts when the previous one is
+// done. The schedule changes which thread runs a group, never the order of any node's sums.
 template <class Body>
-void forEachChunkByColour(const ScatterOrder& o, int threads, Body&& body) {
+void forEachChunkByColour(const ScatterOrder& o, int threads, Body&& body,
+                          GroupSchedule schedule = GroupSchedule::Static) {
+  const bool dynamic = schedule == GroupSchedule::Dynamic;
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num();
     for (const auto& groups : o.groups) {
       const auto n = static_cast<long>(groups.size());
-#pragma omp for schedule(dynamic, 1)
-      for (long g = 0; g < n; ++g)
+      const auto run = [&](long g) {
         for (const std::int32_t c : groups[static_cast<std::size_t>(g)]) body(static_cast<std::size_t>(c), t);
+      };
+      if (dynamic) {
+#pragma omp for schedule(dynamic, 1)
+        for (long g = 0; g < n; ++g) run(g);
+      } else {
+#pragma omp for schedule(static)
+        for (long g = 0; g < n; ++g) run(g);
+      }
     }
   }
 }
