@@ -59,9 +59,10 @@ void strainAndClosedFormStress(const StepSetup& setup, double dt, const GridFiel
                                std::vector<std::uint32_t>& deferred,
                                std::vector<std::vector<std::uint32_t>>& deferredPerThread);
 // MUSL: grid-to-particle (velocities, positions) and the remap of the new particle velocities
-// to the grid's mass and momentum with the step's stencils, in one pass in the scatter order of
-// the step's first particleToGrid: the same results as gridToParticle then
-// particleToGrid(kMassMomentum).
+// to the grid's momentum with the step's stencils, in one pass in the scatter order of the
+// step's first particleToGrid: the same results as gridToParticle then
+// particleToGrid(kMassMomentum). The grid's mass is that particleToGrid's, kept: remapped with
+// the same stencils, masses and order of sums it would come out the same, bit for bit.
 void gridToParticleAndRemap(const StepSetup& setup, const Clock& clock, GridFields& grid, Particles& particles,
                             const ScatterOrder& order);
 // The material update (sub-stepping on failure) of every particle, or of `only` (sorted

@@ -15,6 +15,8 @@ void layOutChunks(const Grid& grid, int particlesPerCell, int support, std::size
   order.measured.assign((particles + order.chunk - 1) / order.chunk, RowSpan{});
   order.planned.assign(order.measured.size(), RowSpan{});
   for (auto& g : order.groups) g.clear();
+  order.waits = GroupWaits{};
+  order.waits.waitsBegin.assign(1, 0);
   order.far.clear();
 }
 
@@ -63,6 +65,49 @@ void groupChunks(ScatterOrder& o) {
     for (auto& g : groups) std::sort(g.begin(), g.end());  // a group's chunks scatter in index order
     for (const std::int32_t c : unplanned) groups.push_back({c});
   }
+  linkGroups(o);
+}
+
+void linkGroups(ScatterOrder& o) {
+  GroupWaits& w = o.waits;
+  w.bandPosition.clear();
+  w.waitsBegin.assign(1, 0);
+  w.waits.clear();
+  const double chunks = static_cast<double>(std::max<std::size_t>(1, o.chunks()));
+  // Per colour, its planned groups' node rows [lo, hi] and list entries, in the order of lo;
+  // the groups of one colour reach no common row, so their hi are in that order too.
+  struct Reach {
+    int lo, hi;
+    std::int32_t entry;
+  };
+  std::array<std::vector<Reach>, kColours> reaches;
+  std::int32_t entry = 0;
+  for (int colour = 0; colour < kColours; ++colour) {
+    w.firstOfColour[static_cast<std::size_t>(colour)] = entry;
+    for (const auto& group : o.groups[static_cast<std::size_t>(colour)]) {
+      double middle = 0.0;
+      int lo = INT32_MAX, hi = INT32_MIN;
+      for (const std::int32_t c : group) {
+        middle += (c + 0.5) / chunks;
+        const RowSpan p = o.planned[static_cast<std::size_t>(c)];
+        if (p.empty()) continue;
+        lo = std::min(lo, p.lo);
+        hi = std::max(hi, p.hi + o.support - 1);
+      }
+      w.bandPosition.push_back(middle / static_cast<double>(group.size()));
+      if (lo <= hi) {  // the earlier colours' groups it shares a row with
+        for (int earlier = 0; earlier < colour; ++earlier) {
+          const auto& r = reaches[static_cast<std::size_t>(earlier)];
+          auto it = std::lower_bound(r.begin(), r.end(), lo, [](const Reach& a, int row) { return a.hi < row; });
+          for (; it != r.end() && it->lo <= hi; ++it) w.waits.push_back(it->entry);
+        }
+        reaches[static_cast<std::size_t>(colour)].push_back({lo, hi, entry});
+      }
+      w.waitsBegin.push_back(static_cast<std::int32_t>(w.waits.size()));
+      ++entry;
+    }
+  }
+  w.firstOfColour[kColours] = entry;
 }
 
 }  // namespace ecm::mpm

@@ -60,14 +60,14 @@ std::size_t scatterChunk(const ScatterSetup& t, Particles& p, std::size_t c, Sca
   return bad;
 }
 
-template <ShapeFunction F, bool MassMomentum, bool Forces>
+template <ShapeFunction F, bool MassMomentum, bool Forces, bool Mass = MassMomentum>
 void scatterListed(const ScatterSetup& t, Particles& p, const std::vector<std::uint32_t>& listed, ScatterTarget out) {
   const int nx = t.grid.nodesX();
   const bool withGravity = Forces && (t.gravity[0] != 0.0 || t.gravity[1] != 0.0);
   for (const std::uint32_t i : listed) {
     Stencil s;
     expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
-    detail::scatterParticle<F, MassMomentum, Forces>(s, nx, p, i, t.gravity, withGravity, out);
+    detail::scatterParticle<F, MassMomentum, Forces, Mass>(s, nx, p, i, t.gravity, withGravity, out);
   }
 }
 
@@ -128,8 +128,9 @@ void strainStress(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, con
   }
 }
 
-// MUSL: chunk c's grid-to-particle and the remap of its new velocities to the grid (mass and
-// momentum, with the step's stencils). Returns the first particle with a non-finite value.
+// MUSL: chunk c's grid-to-particle and the remap of its new velocities to the grid (momentum,
+// with the step's stencils; the remapped mass would be the P2G's, bit for bit: the same stencils,
+// masses and order of sums). Returns the first particle with a non-finite value.
 template <ShapeFunction F>
 std::size_t gatherRemapChunk(const ScatterSetup& t, const GridFields& grid, Particles& p, std::size_t c, double dt,
                              double flip, ScatterTarget out) {
@@ -147,7 +148,7 @@ std::size_t gatherRemapChunk(const ScatterSetup& t, const GridFields& grid, Part
     p.position[i] += dt * at.velocity;
     if (bad == kNoParticle && !(vp.allFinite() && p.position[i].allFinite())) bad = i;
     if (s.base < lo || s.base >= hi) continue;  // far: remapped after the colours
-    detail::scatterParticle<F, true, false>(s, nx, p, i, t.gravity, false, out);
+    detail::scatterParticle<F, true, false, false>(s, nx, p, i, t.gravity, false, out);
   }
   return bad;
 }
@@ -163,13 +164,13 @@ GatherFn gatherFor(ShapeFunction f, bool withStrain) {
 
 namespace detail {
 
-void zeroScatterFields(int threads, GridFields& grid, bool massMomentum, bool forces) {
+void zeroScatterFields(int threads, GridFields& grid, bool massMomentum, bool forces, bool keepMass) {
   const auto nodes = static_cast<long>(grid.mass.size());
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (long n = 0; n < nodes; ++n) {
     const auto k = static_cast<std::size_t>(n);
     if (massMomentum) {
-      grid.mass[k] = 0.0;
+      if (!keepMass) grid.mass[k] = 0.0;
       grid.momentum[k].setZero();
     }
     if (forces) {
@@ -275,7 +276,7 @@ void gridToParticleAndRemap(const StepSetup& setup, const Clock& clock, GridFiel
                             const ScatterOrder& order) {
   const Scene& scene = setup.scene;
   const int threads = setup.threads;
-  detail::zeroScatterFields(threads, grid, true, false);
+  detail::zeroScatterFields(threads, grid, true, false, /*keepMass=*/true);
   const ScatterSetup t{scene.grid, setup.invCell, setup.halfWidth, scene.solver.gravity, order};
   const ScatterTarget target = detail::targetOf(grid);
   std::vector<std::size_t> bad(static_cast<std::size_t>(threads), kNoParticle);
@@ -284,7 +285,7 @@ void gridToParticleAndRemap(const StepSetup& setup, const Clock& clock, GridFiel
       const auto k = static_cast<std::size_t>(th);
       bad[k] = std::min(bad[k], gatherRemapChunk<F>(t, grid, particles, c, clock.dt, scene.solver.flip, target));
     });
-    scatterListed<F, true, false>(t, particles, order.far, target);  // after the colours, one at a time
+    scatterListed<F, true, false, false>(t, particles, order.far, target);  // after the colours, one at a time
   });
   const std::size_t first = *std::min_element(bad.begin(), bad.end());
   if (first != kNoParticle) detail::throwNotFinite(clock.step, particles, first);

@@ -26,8 +26,8 @@ inline ScatterTarget targetOf(GridFields& g) {
   return {g.mass.data(), g.momentum.data(), g.force.data(), g.externalForce.data()};
 }
 
-// Zeroes what a scatter accumulates (mass and momentum, forces) at every node.
-void zeroScatterFields(int threads, GridFields& grid, bool massMomentum, bool forces);
+// Zeroes what a scatter accumulates (mass and momentum, forces) at every node; keepMass: not the mass.
+void zeroScatterFields(int threads, GridFields& grid, bool massMomentum, bool forces, bool keepMass = false);
 // Moves the threads' lists into `into` (appended) and sorts it.
 void mergeSorted(std::vector<std::vector<std::uint32_t>>& perThread, std::vector<std::uint32_t>& into);
 // The failures of the transfers, as SimulationError (step: the steps taken).
@@ -46,7 +46,8 @@ inline std::pair<std::size_t, std::size_t> partRange(std::size_t count, int t, i
 // nodes of its stencil s (nx: nodes per grid row). The fields come as values: the fused pass
 // hands over the stress it has just computed (reloading it from memory straight after the
 // store stalls on store forwarding).
-template <ShapeFunction F, bool MassMomentum, bool Forces>
+// Mass = false (with MassMomentum): the momentum alone, for MUSL's remap (its mass is the P2G's).
+template <ShapeFunction F, bool MassMomentum, bool Forces, bool Mass = MassMomentum>
 inline void scatterParticle(const Stencil& s, int nx, double m, const Vec2& velocity, double volume, const Voigt& sig,
                             const Vec2& gravity, bool withGravity, ScatterTarget out) {
   constexpr int S = supportSize(F);
@@ -59,7 +60,7 @@ inline void scatterParticle(const Stencil& s, int nx, double m, const Vec2& velo
       const int n = row + k;
       const double w = s.wx[k] * s.wy[j];
       if constexpr (MassMomentum) {
-        out.mass[n] += w * m;
+        if constexpr (Mass) out.mass[n] += w * m;
         out.momentum[n] += w * mv;
       }
       if constexpr (Forces) {
@@ -72,10 +73,10 @@ inline void scatterParticle(const Stencil& s, int nx, double m, const Vec2& velo
 }
 
 // The same for particle i of p.
-template <ShapeFunction F, bool MassMomentum, bool Forces>
+template <ShapeFunction F, bool MassMomentum, bool Forces, bool Mass = MassMomentum>
 inline void scatterParticle(const Stencil& s, int nx, const Particles& p, std::size_t i, const Vec2& gravity,
                             bool withGravity, ScatterTarget out) {
-  scatterParticle<F, MassMomentum, Forces>(s, nx, p.mass[i], p.velocity[i], p.volume[i], p.stress[i], gravity,
+  scatterParticle<F, MassMomentum, Forces, Mass>(s, nx, p.mass[i], p.velocity[i], p.volume[i], p.stress[i], gravity,
                                            withGravity, out);
 }
 

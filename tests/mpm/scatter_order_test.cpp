@@ -1,9 +1,15 @@
 // The scatter order (mpm/scatter_order.hpp): the plan widens each chunk's measured rows by one
 // row each way, every chunk lands in exactly one group of its colour, and two groups of one
-// colour never reach the same node row, whatever the rows (so they scatter at once safely).
+// colour never reach the same node row, whatever the rows (so they scatter at once safely); a
+// group waits for exactly the groups of earlier colours that reach one of its rows, and the
+// barrier-free schedule runs every chunk once, each node row's chunks in the order (colour,
+// chunk), on any number of threads.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <mutex>
 #include <random>
+#include <set>
 
 #include "mpm/scatter_order.hpp"
 
@@ -70,6 +76,81 @@ TEST_P(GroupSupport, GroupsOfOneColourReachNoCommonNodeRow) {
               << "colour " << colour << ": groups " << a << " and " << b << " reach the same node rows";
     }
     for (const int n : seen) ASSERT_EQ(n, 1) << "every chunk in exactly one group";
+  }
+}
+
+// The node rows a group may reach (lo > hi: none).
+std::pair<int, int> groupReach(const ScatterOrder& o, const std::vector<std::int32_t>& group) {
+  int lo = INT32_MAX, hi = INT32_MIN;
+  for (const std::int32_t c : group) {
+    const RowSpan p = o.planned[static_cast<std::size_t>(c)];
+    if (p.empty()) continue;
+    lo = std::min(lo, p.lo);
+    hi = std::max(hi, p.hi + o.support - 1);
+  }
+  return {lo, hi};
+}
+
+TEST_P(GroupSupport, AGroupWaitsForExactlyTheEarlierColoursGroupsThatReachItsRows) {
+  const auto [support, spread] = GetParam();
+  std::mt19937 rng(static_cast<unsigned>(31 * support + spread));
+  for (int trial = 0; trial < 20; ++trial) {
+    const ScatterOrder o = randomOrder(rng, support, spread);
+    const GroupWaits& w = o.waits;
+    std::vector<std::pair<int, std::size_t>> entries;  // per entry: colour, group
+    for (int colour = 0; colour < kColours; ++colour) {
+      ASSERT_EQ(w.firstOfColour[static_cast<std::size_t>(colour)], static_cast<std::int32_t>(entries.size()));
+      for (std::size_t g = 0; g < o.groups[static_cast<std::size_t>(colour)].size(); ++g) entries.emplace_back(colour, g);
+    }
+    ASSERT_EQ(w.size(), entries.size());
+    for (std::size_t a = 0; a < entries.size(); ++a) {
+      const auto [ca, ga] = entries[a];
+      const auto [alo, ahi] = groupReach(o, o.groups[static_cast<std::size_t>(ca)][ga]);
+      std::set<std::int32_t> expected;  // by brute force over every earlier entry
+      for (std::size_t b = 0; b < entries.size(); ++b) {
+        const auto [cb, gb] = entries[b];
+        const auto [blo, bhi] = groupReach(o, o.groups[static_cast<std::size_t>(cb)][gb]);
+        if (cb < ca && alo <= ahi && blo <= bhi && blo <= ahi && alo <= bhi) expected.insert(static_cast<std::int32_t>(b));
+      }
+      const std::set<std::int32_t> waits(w.waits.begin() + w.waitsBegin[a], w.waits.begin() + w.waitsBegin[a + 1]);
+      ASSERT_EQ(waits, expected) << "entry " << a << " (colour " << ca << ")";
+      ASSERT_GE(w.bandPosition[a], 0.0);
+      ASSERT_LT(w.bandPosition[a], 1.0);
+    }
+  }
+}
+
+// Every chunk appends itself to each node row it reaches, with no lock: the schedule alone must
+// keep two threads off a row at once and give each row its chunks in the order (colour, chunk).
+// The chunks take random times, so that the threads meet in many orders.
+TEST_P(GroupSupport, TheBarrierFreeScheduleRunsEachRowsChunksInColourAndChunkOrder) {
+  const auto [support, spread] = GetParam();
+  std::mt19937 rng(static_cast<unsigned>(57 * support + spread));
+  for (const int threads : {1, 2, 3, 5}) {
+    for (int trial = 0; trial < 5; ++trial) {
+      const ScatterOrder o = randomOrder(rng, support, spread);
+      std::vector<std::vector<std::int32_t>> rows(210), expected(210);  // rows up to 200 + support
+      for (int colour = 0; colour < kColours; ++colour)
+        for (std::size_t c = static_cast<std::size_t>(colour); c < o.chunks(); c += kColours) {
+          const RowSpan p = o.planned[c];
+          if (p.empty()) continue;
+          for (int r = p.lo; r <= p.hi + support - 1; ++r) expected[static_cast<std::size_t>(r)].push_back(static_cast<std::int32_t>(c));
+        }
+      std::vector<int> runs(o.chunks(), 0);
+      std::vector<unsigned> pause(o.chunks());
+      for (auto& v : pause) v = rng() % 200;
+      forEachChunkByColour(o, threads, [&](std::size_t c, int) {
+        ++runs[c];
+        const RowSpan p = o.planned[c];
+        if (p.empty()) return;
+        for (int r = p.lo; r <= p.hi + support - 1; ++r) rows[static_cast<std::size_t>(r)].push_back(static_cast<std::int32_t>(c));
+        const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(pause[c]);
+        while (std::chrono::steady_clock::now() < until) {
+        }
+      });
+      for (const int n : runs) ASSERT_EQ(n, 1) << threads << " threads: every chunk runs once";
+      for (std::size_t r = 0; r < rows.size(); ++r) ASSERT_EQ(rows[r], expected[r]) << threads << " threads, row " << r;
+    }
   }
 }
 
