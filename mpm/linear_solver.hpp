@@ -1,23 +1,27 @@
 #pragma once
 // The sparse direct solver of the implicit steps (docs/implicit.md): the tangent is not
-// symmetric once bands soften, so an LU. UMFPACK (SuiteSparse, through Eigen's wrapper) when the
-// build found it, Eigen's SparseLU otherwise; both analyse a pattern once (it is kept while the
-// particles' stencils stay on the same nodes) and factorise when the Newton iteration asks.
+// symmetric once bands soften, so an LU. UMFPACK (SuiteSparse) when the build found it, Eigen's
+// SparseLU otherwise; both analyse a pattern once (it is kept while the particles' stencils stay
+// on the same nodes) and factorise when the Newton iteration asks. UMFPACK's shared library (and
+// the BLAS, LAPACK and Fortran run-time it needs, some 3.5 MB resident) is loaded at its first
+// use (mpm/umfpack_library.hpp), so that an explicit run does not carry it.
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
-#ifdef ECM_HAVE_UMFPACK
-#include <Eigen/UmfPackSupport>
-#endif
+#include <memory>
 
 namespace ecm::mpm {
 
 enum class LinearSolverKind { SparseLU, Umfpack };
 const char* toString(LinearSolverKind k);
+// Whether the build has the solver (UMFPACK: found at build time; loaded at the first factorisation).
 bool available(LinearSolverKind k);
+
+struct UmfpackFactors;  // UMFPACK's symbolic and numeric factors (mpm/linear_solver.cpp)
 
 class LinearSolver {
  public:
-  explicit LinearSolver(LinearSolverKind kind) : kind_(kind) {}
+  explicit LinearSolver(LinearSolverKind kind);
+  ~LinearSolver();
   // Factorises K (its pattern analysed at the first call, and after forgetPattern()); false if K is singular.
   bool factorize(const Eigen::SparseMatrix<double>& k);
   // The next K has another pattern.
@@ -28,9 +32,7 @@ class LinearSolver {
   LinearSolverKind kind_;
   bool analysed_ = false;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
-#ifdef ECM_HAVE_UMFPACK
-  Eigen::UmfPackLU<Eigen::SparseMatrix<double>> umfpack_;
-#endif
+  std::unique_ptr<UmfpackFactors> umfpack_;
 };
 
 }  // namespace ecm::mpm
