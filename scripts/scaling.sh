@@ -5,12 +5,14 @@
 # falls on all of them alike; each time is the wall time of the whole process (/usr/bin/time)
 # minus the median time of the same process stopped after its first step (reading the scene,
 # seeding, the first scatter: the set-up); the speed-up is the ratio of the medians.
-# Usage: scripts/scaling.sh [-r REPS] [-t "1 2 4 8"] [-n STEPS] [-b ECM_MPM] [-o OUT_DIR] SCENE...
+# Usage: scripts/scaling.sh [-r REPS] [-t "1 2 4 8"] [-n STEPS] [-b "ECM_MPM..."] [-o OUT_DIR] SCENE...
 #   defaults: 5 repetitions, threads "1 2", 500 steps, ./build/mpm/ecm-mpm, results/scaling,
 #   scene data/mpm/two-disks.yaml. Every run stops after STEPS steps (--max-steps), with the
 #   checkpoint that --max-steps writes (in the set-up runs too, so it cancels in the difference).
-# Writes OUT_DIR/times.csv (scene, threads, repetition, kind, seconds) and OUT_DIR/summary.txt,
-# and prints the summary: scene, threads, median [min-max] s (set-up subtracted), the speed-up
+#   -b takes several builds (quoted, space-separated) to compare them side by side, interleaved.
+#   Paths (scenes, builds, OUT_DIR) are taken from the repository root.
+# Writes OUT_DIR/times.csv (build, scene, threads, repetition, kind, seconds) and OUT_DIR/summary.txt,
+# and prints the summary: build, scene, threads, median [min-max] s (set-up subtracted), the speed-up
 # against the first (smallest) thread count.
 # Example on a bigger machine:
 #   scripts/scaling.sh -r 5 -t "1 2 4 8 16 32 64" data/mpm/two-disks.yaml data/mpm/two-disks-usl.yaml
@@ -20,32 +22,32 @@
 # the same thread counts before and after the measurement.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-reps=5 threads="1 2" steps=500 bin=./build/mpm/ecm-mpm out=results/scaling
+reps=5 threads="1 2" steps=500 bins=./build/mpm/ecm-mpm out=results/scaling
 while getopts "r:t:n:b:o:h" opt; do
   case $opt in
     r) reps=$OPTARG ;;
     t) threads=$OPTARG ;;
     n) steps=$OPTARG ;;
-    b) bin=$OPTARG ;;
+    b) bins=$OPTARG ;;
     o) out=$OPTARG ;;
-    *) sed -n '2,20p' "$0" >&2; exit 2 ;;
+    *) sed -n '2,21p' "$0" >&2; exit 2 ;;
   esac
 done
 shift $((OPTIND - 1))
 scenes=("$@")
 [[ ${#scenes[@]} -gt 0 ]] || scenes=(data/mpm/two-disks.yaml)
-[[ -x $bin ]] || { echo "error: $bin not built (cmake --build build)" >&2; exit 2; }
+for bin in $bins; do [[ -x $bin ]] || { echo "error: $bin not built (cmake --build build)" >&2; exit 2; }; done
 [[ -x /usr/bin/time ]] || { echo "error: /usr/bin/time missing (apt-get install -y time)" >&2; exit 2; }
 for s in "${scenes[@]}"; do [[ -f $s ]] || { echo "error: no scene $s" >&2; exit 2; }; done
 [[ $reps =~ ^[1-9][0-9]*$ && $steps =~ ^[1-9][0-9]*$ ]] || { echo "error: -r and -n take positive integers" >&2; exit 2; }
 for t in $threads; do [[ $t =~ ^[1-9][0-9]*$ ]] || { echo "error: -t takes positive integers, got '$t'" >&2; exit 2; }; done
 mkdir -p "$out"
 csv=$out/times.csv
-echo "scene,threads,repetition,kind,seconds" >"$csv"
+echo "build,scene,threads,repetition,kind,seconds" >"$csv"
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 
-# Wall seconds of one ecm-mpm run: $1 scene, $2 threads, $3 steps. Exit code 3 is the stop
+# Wall seconds of one run of build $bin: $1 scene, $2 threads, $3 steps. Exit code 3 is the stop
 # at --max-steps; a run that ends before (exit 0) is timed whole, and said.
 wall() {
   local rc=0
@@ -78,10 +80,12 @@ echo "compute-loop speed-up before: $before" >&2
 for ((r = 1; r <= reps; ++r)); do
   for s in "${scenes[@]}"; do
     for t in $threads; do
-      secs=$(wall "$s" "$t" 1) || exit 1
-      echo "$s,$t,$r,setup,$secs" >>"$csv"
-      secs=$(wall "$s" "$t" "$steps") || exit 1
-      echo "$s,$t,$r,run,$secs" >>"$csv"
+      for bin in $bins; do
+        secs=$(wall "$s" "$t" 1) || exit 1
+        echo "$bin,$s,$t,$r,setup,$secs" >>"$csv"
+        secs=$(wall "$s" "$t" "$steps") || exit 1
+        echo "$bin,$s,$t,$r,run,$secs" >>"$csv"
+      done
     done
   done
   echo "repetition $r of $reps done" >&2
@@ -91,7 +95,7 @@ after=$(ceiling)
 {
   echo "ecm-mpm whole-process times, $steps steps, set-up subtracted (median of $reps, min-max), $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) CPUs"
   echo "compute-loop speed-up (ceiling) before: $before after: $after"
-  awk -F, 'NR > 1 { key = $1 "," $2; if ($4 == "setup") su[key] = su[key] " " $5; else run[key] = run[key] " " $5 }
+  awk -F, 'NR > 1 { key = $1 "," $2 "," $3; if ($5 == "setup") su[key] = su[key] " " $6; else run[key] = run[key] " " $6 }
     function median(list,   a, n, i, j, x) {
       n = split(list, a, " ")
       for (i = 2; i <= n; ++i) { x = a[i]; for (j = i - 1; j >= 1 && a[j] > x; --j) a[j + 1] = a[j]; a[j + 1] = x }
@@ -102,9 +106,9 @@ after=$(ceiling)
       for (key in run) {
         split(key, k, ",")
         s = median(su[key]); m = median(run[key])
-        printf "%s %s %.3f %.3f %.3f\n", k[1], k[2], m - s, lo - s, hi - s
+        printf "%s %s %s %.3f %.3f %.3f\n", k[1], k[2], k[3], m - s, lo - s, hi - s
       }
-    }' "$csv" | sort -k1,1 -k2,2n |
-    awk '{ if ($1 != scene) { scene = $1; base = $3; t0 = $2 }
-           printf "%-40s %3d threads  %8.3f s [%.3f-%.3f]  speed-up %.2f (against %d)\n", $1, $2, $3, $4, $5, base / $3, t0 }'
+    }' "$csv" | sort -k1,1 -k2,2 -k3,3n |
+    awk '{ if ($1 "," $2 != run) { run = $1 "," $2; base = $4; t0 = $3 }
+           printf "%s %s %3d threads  %8.3f s [%.3f-%.3f]  speed-up %.2f (against %d)\n", $1, $2, $3, $4, $5, $6, base / $4, t0 }'
 } | tee "$out/summary.txt"
