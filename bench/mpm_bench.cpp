@@ -55,7 +55,7 @@ void report(benchmark::State& state, const Solver& solver) {
       benchmark::Counter(n * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
   state.counters["bytes_per_particle"] = static_cast<double>(solver.particles().bytesPerParticle());
   state.counters["bytes_per_cracked"] =
-      static_cast<double>(solver.particles().bytesPerParticle() + Particles::bytesPerBand());
+      static_cast<double>(solver.particles().bytesPerParticle() + solver.particles().bytesPerBand());
 }
 
 // ~100k elastic particles vibrating freely (an initial velocity field).

@@ -53,6 +53,9 @@ struct PointState {
   double* integrity = nullptr;       // SmearedCrack: x = 1 - D of the point (nullptr for other models)
   BandState* band = nullptr;         // Enriched: nullptr while intact
   BandState* secondBand = nullptr;   // Enriched with the second-band option: nullptr while it has none
+  // Enriched, one band, no tangent: the band's secant response kept by the caller (rebuilt when
+  // it is not the band's; material/secant_response.hpp), or nullptr: the predictor's solve.
+  SecantResponse* secant = nullptr;
 };
 
 // The bands a point opened in an update, for the caller to store.
@@ -124,8 +127,10 @@ class Material {
       case ModelKind::Enriched: break;
     }
     const TwoPhasePoint& m = *std::get_if<TwoPhasePoint>(&model_);
-    if (!m.opensSecondBand())
-      return s.band ? m.updateCracked(*s.band, s.strain, d, options) : m.updateIntact(s.strain, d, size, opened.first, options);
+    if (!m.opensSecondBand()) {
+      if (!s.band) return m.updateIntact(s.strain, d, size, opened.first, options);
+      return s.secant ? m.updateCracked(*s.band, *s.secant, s.strain, d, options) : m.updateCracked(*s.band, s.strain, d, options);
+    }
     return s.band ? m.updateCracked(*s.band, s.secondBand, s.strain, d, size, opened.second, options)
                   : m.updateIntact(s.strain, d, size, opened.first, opened.second, options);
   }

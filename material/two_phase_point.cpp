@@ -174,16 +174,20 @@ UpdateResult TwoPhasePoint::releaseSnapBack(BandState& b, Voigt& strain, const V
   return res;
 }
 
+// Relative to f_t'; at enormous strains the floor is the round-off of a : eps itself, or of
+// f a eps_L / (1 - f) in the bulk stress of Eq. (4), which is larger once f > 1/2 (f near 1,
+// docs/model.md).
+double TwoPhasePoint::crackedTolerance(const Voigt& aEps, double f) const {
+  return kRelativeTolerance * tensileStrength() + kRoundOff * aEps.norm() * std::max(1.0, f / (1.0 - f));
+}
+
 UpdateResult TwoPhasePoint::predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent,
                                           unsigned stressControlled) const {
   const Voigt eps = strain + increment;
   UpdateResult res;
   const Voigt aEps = stiffness() * eps;
-  // Relative to f_t'; at enormous strains the floor is the round-off of a : eps itself, or of
-  // f a eps_L / (1 - f) in the bulk stress of Eq. (4), which is larger once f > 1/2 (f near 1,
-  // docs/model.md).
   const double f = b.volumeFraction;
-  const double tol = kRelativeTolerance * tensileStrength() + kRoundOff * aEps.norm() * std::max(1.0, f / (1.0 - f));
+  const double tol = crackedTolerance(aEps, f);
 
   // 1. Elastic predictor: with the band's damage frozen, Eq. (6) is linear in [u] and the secant
   //    K of Eq. (9) (a_L = x0 a, always positive definite) solves it in one step. If the band

@@ -9,6 +9,7 @@
 #include "material/band_damage_law.hpp"
 #include "material/driving_force.hpp"
 #include "material/effective_size.hpp"
+#include "material/secant_response.hpp"
 
 namespace ecm {
 
@@ -45,6 +46,11 @@ struct BandState {
   double normalJump() const { return crackNormal.dot(jump); }
   Vec2 slidingDirection() const { return {-crackNormal[1], crackNormal[0]}; }
 };
+
+inline bool SecantResponse::builtFor(const BandState& b) const {
+  return integrity == b.integrity && volumeFraction == b.volumeFraction && crackNormal == b.crackNormal &&
+         onsetStrain == b.onsetStrain;
+}
 
 struct EnrichedState {
   Voigt strain = Voigt::Zero();         // macroscopic strain
@@ -131,6 +137,14 @@ class TwoPhasePoint {
   }
   UpdateResult updateCracked(BandState& band, Voigt& strain, const Voigt& strainIncrement,
                              UpdateOptions options = {}) const;
+  // The same with the band's secant response kept by the caller (an explicit solver, one per
+  // band; material/secant_response.hpp): rebuilt when it is not the band's, then an unloading
+  // increment takes it instead of the predictor's solve (the same state to round-off); a
+  // loading one takes updateCracked() above, bit for bit. Without the tangent only.
+  UpdateResult updateCracked(BandState& band, SecantResponse& secant, Voigt& strain, const Voigt& strainIncrement,
+                             UpdateOptions options = {}) const;
+  // The secant response of band state b (pure).
+  SecantResponse secantResponse(const BandState& b) const;
 
   // The cracked update of a point under the second-band option (docs/model.md, "A second
   // band"). `second` is the point's second band, nullptr while it has none; a second band that
@@ -271,6 +285,8 @@ class TwoPhasePoint {
   // The smaller stability margin of a two-band state (> 0: stable under the caller's control).
   double twoBandMargin(const BandState& first, const BandState& second, const Mat4& jacobian,
                        unsigned stressControlled) const;
+  // The traction tolerance of a cracked update at the elastic stress aEps = a eps.
+  double crackedTolerance(const Voigt& aEps, double f) const;
   // The cracked update proper: elastic predictor, then damage corrector on the envelope.
   UpdateResult predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent,
                               unsigned stressControlled = 0) const;

@@ -40,15 +40,22 @@ bool inParticleOrder(const std::vector<std::int32_t>& index) {
   return true;
 }
 
-void sortByParticle(std::vector<std::int32_t>& index, std::vector<BandState>& states) {
+// The states (and their secant responses, if kept: `secants` of the same size) in particle order.
+void sortByParticle(std::vector<std::int32_t>& index, std::vector<BandState>& states,
+                    std::vector<SecantResponse>* secants = nullptr) {
+  const bool withSecants = secants != nullptr && secants->size() == states.size();
   std::vector<BandState> sorted;
+  std::vector<SecantResponse> sortedSecants;
   sorted.reserve(states.size());
+  if (withSecants) sortedSecants.reserve(states.size());
   for (std::int32_t& b : index) {
     if (b < 0) continue;
     sorted.push_back(states[static_cast<std::size_t>(b)]);
+    if (withSecants) sortedSecants.push_back((*secants)[static_cast<std::size_t>(b)]);
     b = static_cast<std::int32_t>(sorted.size() - 1);
   }
   states = std::move(sorted);
+  if (withSecants) *secants = std::move(sortedSecants);
 }
 
 }  // namespace
@@ -56,7 +63,7 @@ void sortByParticle(std::vector<std::int32_t>& index, std::vector<BandState>& st
 bool Particles::bandsInParticleOrder() const { return inParticleOrder(band) && inParticleOrder(secondBand); }
 
 void Particles::sortBandsByParticle() {
-  sortByParticle(band, bands);
+  sortByParticle(band, bands, &secants);
   sortByParticle(secondBand, secondBands);
 }
 

@@ -30,6 +30,10 @@ struct Particles {
   std::vector<StencilAt> stencilAt;
 
   std::vector<BandState> bands;      // side array: one per cracked enriched point
+  // The secant response of each band (its unloading update as affine maps, docs/model.md): a
+  // cache, rebuilt wherever it is not its band's, so it is neither checkpointed nor kept in step
+  // by whoever adds bands (the explicit stress phase sizes it; empty under the second-band option).
+  std::vector<SecantResponse> secants;
   // The second band (second_band: orthogonal, docs/model.md): an index per particle into
   // `secondBands` (-1: none), allocated only when a material of the scene has the option.
   std::vector<std::int32_t> secondBand;
@@ -56,7 +60,9 @@ struct Particles {
 
   // Memory per particle of the arrays above (bytes), intact and cracked.
   std::size_t bytesPerParticle() const;
-  static constexpr std::size_t bytesPerBand() { return sizeof(BandState); }  // added when a point cracks
+  // Added when a point cracks: its band state, and the band's secant response where the stress
+  // phase keeps them (no second-band option: secondBand is empty).
+  std::size_t bytesPerBand() const { return sizeof(BandState) + (secondBand.empty() ? sizeof(SecantResponse) : 0); }
 };
 
 }  // namespace ecm::mpm

@@ -371,7 +371,7 @@ class Run {
         {"particles", r.particles},
         {"cracked_particles", p.bands.size()},
         {"bytes_per_particle_uncracked", p.bytesPerParticle()},
-        {"bytes_per_particle_cracked", p.bytesPerParticle() + Particles::bytesPerBand()},
+        {"bytes_per_particle_cracked", p.bytesPerParticle() + p.bytesPerBand()},
         {"time_step_s", solver_.timeStep()},
         {"end_time_s", solver_.time()},
         {"threads", solver_.threads()},
@@ -402,7 +402,7 @@ class Run {
     }
     if (!p.secondBand.empty()) {  // second_band: orthogonal (docs/model.md)
       j["two_band_points"] = p.twoBandPoints();
-      j["bytes_per_particle_two_bands"] = p.bytesPerParticle() + 2 * Particles::bytesPerBand();
+      j["bytes_per_particle_two_bands"] = p.bytesPerParticle() + 2 * p.bytesPerBand();
     }
     // Where the steps' wall time went (of this run's steps: after a restart, those since the checkpoint).
     nlohmann::json phases = nlohmann::json::object();

@@ -46,6 +46,10 @@ void updateStresses(const StepSetup& setup, long step, Particles& p, RunTotals& 
   UpdateOptions options{setup.scene.solver.snapBack, false};  // explicit: no tangent needed
   options.substepLevels = setup.scene.solver.substepLevels;
   Failure failure;
+  // The secant responses of the bands (docs/model.md): kept while no material may open a second
+  // band (that update takes the predictor's solve); new entries are built at their first update.
+  const bool keepSecants = p.secondBand.empty();
+  p.secants.resize(keepSecants ? p.bands.size() : 0);
   std::vector<std::vector<Onset>> onsets(static_cast<std::size_t>(setup.threads));
 #pragma omp parallel num_threads(setup.threads) reduction(+ : retries, released)
   {
@@ -65,9 +69,11 @@ void updateStresses(const StepSetup& setup, long step, Particles& p, RunTotals& 
         if (!deferredOnly && m.closedFormStress(d, bi >= 0, p.strain[i], p.stress[i])) continue;
         const std::int32_t b2 = p.secondBand.empty() ? -1 : p.secondBand[i];
         Onset onset{i, {}};
+        const auto k = static_cast<std::size_t>(bi);
         const UpdateResult r = m.update({p.strain[i], p.integrity.empty() ? nullptr : &p.integrity[i],
-                                         bi >= 0 ? &p.bands[static_cast<std::size_t>(bi)] : nullptr,
-                                         b2 >= 0 ? &p.secondBands[static_cast<std::size_t>(b2)] : nullptr},
+                                         bi >= 0 ? &p.bands[k] : nullptr,
+                                         b2 >= 0 ? &p.secondBands[static_cast<std::size_t>(b2)] : nullptr,
+                                         bi >= 0 && keepSecants ? &p.secants[k] : nullptr},
                                         d, setup.size, onset.bands, options);
         if (r.converged()) {
           p.stress[i] = r.stress;
@@ -101,6 +107,7 @@ void updateStresses(const StepSetup& setup, long step, Particles& p, RunTotals& 
       p.secondBands.push_back(*o.bands.second);
     }
   }
+  p.secants.resize(keepSecants ? p.bands.size() : 0);  // (so that the sort below moves them with their bands)
   // Every 64 steps the bands go back into particle order (decided from the state and the step
   // alone, so a restarted run stores them exactly as an uninterrupted one).
   if ((step + 1) % 64 == 0 && !p.bandsInParticleOrder()) p.sortBandsByParticle();
