@@ -60,9 +60,11 @@ struct Particles {
 
   // Memory per particle of the arrays above (bytes), intact and cracked.
   std::size_t bytesPerParticle() const;
-  // Added when a point cracks: its band state, and the band's secant response where the stress
-  // phase keeps them (no second-band option: secondBand is empty).
-  std::size_t bytesPerBand() const { return sizeof(BandState) + (secondBand.empty() ? sizeof(SecantResponse) : 0); }
+  // Whether the explicit stress phase keeps the bands' secant responses: while no material may
+  // open a second band (that update takes the predictor's solve; secondBand is empty then).
+  bool keepsSecants() const { return secondBand.empty(); }
+  // Added when a point cracks: its band state, and the band's secant response where they are kept.
+  std::size_t bytesPerBand() const { return sizeof(BandState) + (keepsSecants() ? sizeof(SecantResponse) : 0); }
 };
 
 }  // namespace ecm::mpm

@@ -46,9 +46,8 @@ void updateStresses(const StepSetup& setup, long step, Particles& p, RunTotals& 
   UpdateOptions options{setup.scene.solver.snapBack, false};  // explicit: no tangent needed
   options.substepLevels = setup.scene.solver.substepLevels;
   Failure failure;
-  // The secant responses of the bands (docs/model.md): kept while no material may open a second
-  // band (that update takes the predictor's solve); new entries are built at their first update.
-  const bool keepSecants = p.secondBand.empty();
+  // The secant responses of the bands (docs/model.md); new entries are built at their first update.
+  const bool keepSecants = p.keepsSecants();
   p.secants.resize(keepSecants ? p.bands.size() : 0);
   std::vector<std::vector<Onset>> onsets(static_cast<std::size_t>(setup.threads));
 #pragma omp parallel num_threads(setup.threads) reduction(+ : retries, released)
