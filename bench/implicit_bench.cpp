@@ -7,8 +7,8 @@
 #include <Eigen/SparseLU>
 #include <map>
 
-#include "mpm/implicit_solver.hpp"
-#include "mpm/scene_yaml.hpp"
+#include "mpm/implicit/implicit_solver.hpp"
+#include "mpm/scene/scene_yaml.hpp"
 #ifdef ECM_HAVE_UMFPACK
 #include <Eigen/UmfPackSupport>
 #endif

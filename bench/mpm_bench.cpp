@@ -10,8 +10,8 @@
 #include <string>
 #include <unistd.h>
 
-#include "mpm/solver.hpp"
-#include "mpm/vtu_writer.hpp"
+#include "mpm/explicit/solver.hpp"
+#include "mpm/output/vtu_writer.hpp"
 
 namespace {
 
@@ -130,7 +130,7 @@ void BM_Phase(benchmark::State& state) {
     if (ph != phase) state.ResumeTiming();
   };
   const StepSetup& setup = solver.setup();
-  MpmState& st = solver.editState();  // the plain USL phases of mpm/step.cpp, run by hand
+  MpmState& st = solver.editState();  // the plain USL phases of mpm/explicit/step.cpp, run by hand
   for (auto _ : state) {
     timed(kP2G, [&] {
       particleToGrid(setup, st.clock.step, st.particles, st.grid, st.order, kStencils | kMassMomentum | kForces);
@@ -139,7 +139,7 @@ void BM_Phase(benchmark::State& state) {
     timed(kGrid, [&] { updateGrid(setup, st.clock, st.grid, st.conditions, st.totals); });
     timed(kG2P, [&] { gridToParticle(setup, st.clock, st.grid, st.particles, true); });
     timed(kStress, [&] { updateStresses(setup, st.clock.step, st.particles, st.totals); });
-    timed(kOutput, [&] { writeVtu(solver, vtu, &scratch); });
+    timed(kOutput, [&] { writeVtu(solver.particles(), solver.time(), vtu, &scratch); });
   }
   std::filesystem::remove(vtu);
   state.SetLabel(std::string(kPhaseNames[phase]) + (cracked ? ", cracked" : ", elastic"));

@@ -10,8 +10,8 @@
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
-#include "mpm/scene_yaml.hpp"
-#include "mpm/solver.hpp"
+#include "mpm/scene/scene_yaml.hpp"
+#include "mpm/explicit/solver.hpp"
 
 namespace {
 
@@ -25,7 +25,7 @@ const Scene& twoDisks(int scheme) {
 }
 
 // Bytes of the solver's arrays per particle: the particle fields, its slot in the scatter order
-// and the grid fields (no per-thread copy of the grid: mpm/scatter_order.hpp).
+// and the grid fields (no per-thread copy of the grid: mpm/explicit/scatter_order.hpp).
 double solverBytesPerParticle(const Solver& s) {
   const double particles = static_cast<double>(s.particles().size());
   const GridFields& g = s.grid();

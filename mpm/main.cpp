@@ -17,10 +17,10 @@
 #include "io/cli_exit.hpp"
 #include "io/output_error.hpp"
 #include "io/yaml_input.hpp"
-#include "mpm/checkpoint.hpp"
-#include "mpm/presets.hpp"
+#include "mpm/output/checkpoint_codec.hpp"
+#include "mpm/scene/presets.hpp"
 #include "mpm/run.hpp"
-#include "mpm/scene_yaml.hpp"
+#include "mpm/scene/scene_yaml.hpp"
 
 namespace {
 
@@ -67,7 +67,7 @@ std::vector<std::string> presetNameList() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"ecm-mpm: explicit MPM with the enriched constitutive model (units: mm, N, MPa, t, s)"};
+  CLI::App app{"ecm-mpm: 2D MPM, explicit or implicit (quasi-static), with the enriched constitutive model (units: mm, N, MPa, t, s)"};
   std::string scenePath;
   ecm::mpm::RunOptions options;
   std::string outDir, restartDir, preset;
@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--preset", preset,
                  ecm::mpm::presetNames() + ": particles per cell, shape function, scheme and CFL from the measured "
-                 "speed/accuracy presets (mpm/presets.hpp), replacing the scene's")
+                 "speed/accuracy presets (mpm/scene/presets.hpp), replacing the scene's")
       ->check(CLI::IsMember(presetNameList()));
   app.add_flag("--no-vtu", noVtu, "do not write VTU particle snapshots");
   app.add_flag("--no-plot", noPlot, "do not render the load-displacement PNG");

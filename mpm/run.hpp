@@ -3,7 +3,7 @@
 // VTU snapshots with a .pvd index, summary.json, a load-displacement PNG, the final particles
 // (particles_final.csv: x, y, damage, material, opening) with their damage map PNG, progress on stderr.
 // A failure still leaves everything written so far readable, and a summary saying why.
-// Checkpoints (mpm/checkpoint.hpp) are written as the scene asks and when the run is asked to
+// Both solvers run in the one run loop (mpm/run_loop.hpp). Checkpoints are written as the scene asks and when the run is asked to
 // stop; a restart continues the same output folder (history.csv, snapshots) from the checkpoint.
 #include <atomic>
 #include <cstdint>
@@ -13,9 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "io/csv_writer.hpp"
-#include "mpm/particles.hpp"
-#include "mpm/scene.hpp"
+#include "mpm/scene/scene.hpp"
 
 namespace ecm::mpm {
 
@@ -55,27 +53,10 @@ struct RunResult {
 
 // Runs the scene to its end time (or its stop_when). Input errors (invalid scene) throw std::invalid_argument and
 // an output folder that cannot be written io::OutputError, before anything is written; a
-// checkpoint that a restart cannot use throws CheckpointError (mpm/checkpoint.hpp), before
+// checkpoint that a restart cannot use throws CheckpointError (mpm/explicit/checkpoint.hpp), before
 // anything is changed. A failure during the run (simulation, or a file that cannot be written)
 // is reported in the result (and in summary.json when it can be written) after the outputs have
 // been flushed. A completed run removes its checkpoint; a stopped or failed one keeps the last.
 RunResult runScene(const Scene& scene, const RunOptions& options);
-
-// The columns of history.csv for a scene.
-std::vector<std::string> historyColumns(const Scene& scene);
-// history.csv of a run in `dir`: continued from `resume` (a restart; a file that does not match
-// it is a CheckpointError naming `checkpoint`), or new, after removing a stale `checkpoint` of an
-// earlier run in the folder. Explicit and implicit runs open theirs with it.
-std::unique_ptr<io::CsvWriter> openHistory(const std::filesystem::path& dir, const std::vector<std::string>& columns,
-                                           const std::filesystem::path& checkpoint, const io::CsvWriter::Resume* resume);
-// The component a driven condition loads along (the first prescribed one), for plots and peaks.
-int drivenComponent(const NodeCondition& c);
-// The outputs both solvers write: the final particles (particles_final.csv: x, y, damage,
-// material, opening, normal, stress; atomically), the damage map of that file, and the
-// load-displacement PNG of history.csv (its first columns: time, step, each condition's
-// displacement and reaction).
-void writeParticles(const Particles& particles, const std::filesystem::path& path);
-void plotDamage(const Scene& scene, std::size_t particles, const std::filesystem::path& dir);
-void plotLoadDisplacement(const Scene& scene, const std::filesystem::path& dir);
 
 }  // namespace ecm::mpm

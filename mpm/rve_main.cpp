@@ -17,9 +17,9 @@
 #include "io/json_summary.hpp"
 #include "io/output_dir.hpp"
 #include "io/output_error.hpp"
-#include "mpm/rve_sample.hpp"
-#include "mpm/scene_yaml.hpp"
-#include "mpm/seeding.hpp"
+#include "mpm/scene/rve_sample.hpp"
+#include "mpm/scene/scene_yaml.hpp"
+#include "mpm/setup/seeding.hpp"
 
 namespace {
 

@@ -8,8 +8,8 @@
 
 #include "driver/point_scene_yaml.hpp"
 #include "material/linear_elastic.hpp"
-#include "mpm/scene_yaml.hpp"
-#include "mpm/seeding.hpp"
+#include "mpm/scene/scene_yaml.hpp"
+#include "mpm/setup/seeding.hpp"
 #include "study/study.hpp"
 #include "study/internal.hpp"
 
@@ -385,7 +385,7 @@ std::vector<PlannedRun> planStudy(const Study& study) {
           run.estimatedSteps = (implicit->loadStep > 0.0 ? std::ceil(ramp / implicit->loadStep) : 0.0) +
                                (control ? std::ceil(control->until / control->step) : 0.0);
         } else {
-          run.estimatedSteps = run.scene->endTime * speed / (run.scene->solver.cfl * std::min(g.cellSize[0], g.cellSize[1]));
+          run.estimatedSteps = run.scene->endTime * speed / (run.scene->solver.explicitScheme.cfl * std::min(g.cellSize[0], g.cellSize[1]));
         }
         if (!study.condition.empty() && !findCondition(run.scene->conditions, study.condition))
           throw InputError(study.file, study.referenceLine, what + "the scene has no condition '" + study.condition + "'");

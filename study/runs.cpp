@@ -22,7 +22,7 @@
 #include "io/json_summary.hpp"
 #include "io/output_dir.hpp"
 #include "mpm/run.hpp"
-#include "mpm/scene_yaml.hpp"
+#include "mpm/scene/scene_yaml.hpp"
 #include "study/study.hpp"
 #include "study/internal.hpp"
 

@@ -17,7 +17,7 @@
 //   design: grid                   # grid: every combination | one_at_a_time: the base run plus
 //                                  # one knob changed at a time (the others at the base value)
 //   knobs:                         # key path -> values (applied in this order)
-//     solver.cfl: [0.1, 0.3, 0.6]
+//     solver.explicitScheme.cfl: [0.1, 0.3, 0.6]
 //     particles_per_cell: [1, 2, 3]
 //     grid.refinement: [1, 2, 4]   # derived: cells x r (rounded up), cell_size / r
 //     time_scale: [0.5, 1, 2]      # derived: every time of the loading x s (see applyTimeScale)
@@ -30,7 +30,7 @@
 //     closed_form: bar_vibration   # mpm: fixed-free bar released with a uniform velocity
 //     condition: clamp             #   (its reaction is analysed: period and amplitude)
 //     # closed_form: uniaxial_tension   point: the enriched point's closed form
-//     # run: {particles_per_cell: 3, solver.cfl: 0.1}   the finest setting (added if not planned)
+//     # run: {particles_per_cell: 3, solver.explicitScheme.cfl: 0.1}   the finest setting (added if not planned)
 //     # condition: top             with run: peak_reaction is this condition's largest |R| in history.csv
 //     # scene: ../den/den-4b-coarse-implicit.yaml   another scene, run once into reference/ (the
 //     #                            implicit solution as the rate-free reference of explicit runs)
@@ -61,7 +61,7 @@
 #include "driver/point_driver.hpp"
 #include "io/csv_reader.hpp"
 #include "io/yaml_input.hpp"
-#include "mpm/scene.hpp"
+#include "mpm/scene/scene.hpp"
 
 namespace ecm::study {
 

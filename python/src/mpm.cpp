@@ -11,9 +11,9 @@
 
 #include "io/checksum.hpp"
 #include "io/yaml_input.hpp"
-#include "mpm/presets.hpp"
+#include "mpm/scene/presets.hpp"
 #include "mpm/run.hpp"
-#include "mpm/scene_yaml.hpp"
+#include "mpm/scene/scene_yaml.hpp"
 #include "python/src/bindings.hpp"
 
 namespace ecm::python {

@@ -26,7 +26,7 @@ TEST_P(AffineField, EnrichedStressHistoryEqualsDirectMaterialUpdate) {
   s.materials = {paperConcrete()};
   s.bodies = {{Shape::rectangle(Vec2(20.0, 16.0), Vec2(40.0, 32.0)), 0, false, Vec2::Zero()}};
   s.solver.shapeFunction = shape;
-  s.solver.scheme = scheme;
+  s.solver.explicitScheme.scheme = scheme;
   s.solver.effectiveSize = rule;
   // Tension along x with shear: the crack normal is off the axes.
   Mat2 g;

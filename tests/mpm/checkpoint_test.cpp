@@ -15,7 +15,8 @@
 #include "../io/temp_dir.hpp"
 #include "io/csv_reader.hpp"
 #include "io/output_error.hpp"
-#include "mpm/checkpoint.hpp"
+#include "mpm/explicit/checkpoint.hpp"
+#include "mpm/output/run_files.hpp"
 #include "mpm/run.hpp"
 #include "test_scenes.hpp"
 
@@ -308,9 +309,9 @@ TEST(Determinism, RunTwiceGivesTheSameHistoryBitwise) {
 
 // A run stopped on two threads and resumed on one has the outputs of the uninterrupted run on
 // two, bitwise: every node sums its particles in an order set by the particles alone
-// (mpm/scatter_order.hpp; the checkpoint keeps the blocks the fused pass scattered from), every
+// (mpm/explicit/scatter_order.hpp; the checkpoint keeps the blocks the fused pass scattered from), every
 // sum over particles or nodes is taken in fixed chunks (the dissipation per chunk of the dynamic
-// schedule, mpm/stress_update.cpp; the others by mpm/ordered_sum.hpp), whichever thread took
+// schedule, mpm/explicit/stress_update.cpp; the others by mpm/core/ordered_sum.hpp), whichever thread took
 // which chunk and however many there are.
 TEST(Determinism, StopOnTwoThreadsAndResumeOnOne) {
   TempDir tmp;

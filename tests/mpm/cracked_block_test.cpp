@@ -39,7 +39,7 @@ Scene crackingBlock(int cells) {
   top.box = {Vec2(-1.0, kLength), Vec2(kLength + 1.0, kLength)};
   top.component[1] = {Prescribed::Displacement, TimeFunction::smoothRamp(kEnd, 2e-2)};  // ~750 wave transits
   s.conditions.push_back(top);
-  s.solver.damping.local = 0.2;
+  s.solver.explicitScheme.damping.local = 0.2;
   s.endTime = 2e-2;
   return s;
 }

@@ -10,8 +10,8 @@
 #include <cmath>
 #include <map>
 
-#include "mpm/scene_yaml.hpp"
-#include "mpm/solver.hpp"
+#include "mpm/scene/scene_yaml.hpp"
+#include "mpm/explicit/solver.hpp"
 
 namespace ecm::mpm::test {
 namespace {
@@ -76,14 +76,14 @@ TEST(Den, CoarsePanelCracksAtTheNotchTipsSymmetricallyAndPeaksInTheMeasuredWindo
   EXPECT_NEAR(peak, kFullRunPeak, 0.03 * kFullRunPeak);
 }
 
-// The fused USL pass (mpm/fused_transfer.cpp) is the plain USL phase sequence (P2G, grid, G2P,
-// stress; Solver::advanceByPhases, mpm/step.cpp) with its sums in another order: within a part
+// The fused USL pass (mpm/explicit/fused_transfer.cpp) is the plain USL phase sequence (P2G, grid, G2P,
+// stress; Solver::advanceByPhases, mpm/explicit/step.cpp) with its sums in another order: within a part
 // it adds the closed-form points before the deferred ones. So the two agree to round-off, not
 // bitwise: on the reduced DEN through its peak, the load history to 1e-12 of the peak and the
 // same particles cracked.
 TEST(Den, FusedUslPassAgreesWithThePlainPhaseSequenceThroughThePeak) {
   const Scene s = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data/den/den-4b-coarse.yaml");
-  ASSERT_EQ(s.solver.scheme, UpdateScheme::USL);
+  ASSERT_EQ(s.solver.explicitScheme.scheme, UpdateScheme::USL);
   Solver fused(s, 1), plain(s, 1);  // one thread: ctest runs tests side by side
   double peak = 0.0, worst = 0.0;
   long steps = 0;

@@ -115,7 +115,7 @@ TEST(Failure, InvalidScenesAreRefusedWithTheKeyAndAReason) {
     return std::string("nothing thrown");
   };
   Scene s = tensionBlock();
-  s.solver.cfl = 1.2;
+  s.solver.explicitScheme.cfl = 1.2;
   EXPECT_EQ(refusal(s), "solver.cfl: 1.2 is outside the allowed range (0, 1]");
   s = tensionBlock();
   s.materials[0].density = 0.0;

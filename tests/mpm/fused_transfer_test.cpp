@@ -1,4 +1,4 @@
-// The fused USL pass (mpm/fused_transfer.cpp) leaves in the grid the scatter of the particles
+// The fused USL pass (mpm/explicit/fused_transfer.cpp) leaves in the grid the scatter of the particles
 // for the next step. A grid rebuilt from the particles and the deferred list (what happens on
 // the first step, after a restart or when the particles are touched between steps) must be
 // bitwise that grid: otherwise a restarted run would drift from an uninterrupted one.
@@ -16,7 +16,7 @@ class FusedUsl : public ::testing::TestWithParam<ShapeFunction> {};
 TEST_P(FusedUsl, RebuiltGridIsBitwiseTheFusedOne) {
   Scene scene = notchedCrackingBlock();
   scene.solver.shapeFunction = GetParam();
-  ASSERT_EQ(scene.solver.scheme, UpdateScheme::USL);
+  ASSERT_EQ(scene.solver.explicitScheme.scheme, UpdateScheme::USL);
   Solver fused(scene, 2), rebuilt(scene, 2);
   long deferredSteps = 0;
   for (int n = 0; n < 200; ++n) {

@@ -5,11 +5,12 @@
 
 #include <fstream>
 #include <iterator>
+#include <nlohmann/json.hpp>
 
 #include "../io/temp_dir.hpp"
-#include "mpm/checkpoint.hpp"
+#include "mpm/explicit/checkpoint.hpp"
 #include "mpm/run.hpp"
-#include "mpm/scene_yaml.hpp"
+#include "mpm/scene/scene_yaml.hpp"
 
 namespace ecm::mpm::test {
 namespace {
@@ -252,6 +253,130 @@ TEST(ImplicitScene, VtuSnapshotsFollowTheOutputIntervalInTheProgressUnit) {
   for (int k = 0; k < 5; ++k) EXPECT_TRUE(std::filesystem::exists(options.outputDir / ("particles_0000" + std::to_string(k) + ".vtu"))) << k;
   EXPECT_FALSE(std::filesystem::exists(options.outputDir / "particles_00005.vtu"));
   expectContains(fileText(options.outputDir / "particles.pvd"), "timestep=\"0.002\"");
+}
+
+// The scene's snap_back acts in implicit runs as in explicit ones. The weak row softens with
+// E_p = 400 MPa: its points snap back at H = 10 mm (the material's snap-back size
+// h (E + E_p) / E_p = 0.05 x 32400 / 400 = 4.05 mm < H; docs/model.md, "Snap-back on the path").
+// With release (the default) the band fails onto its stable branch and the run goes on, counted;
+// with stop the run ends at the first snap-back that persists after a halving, naming the point.
+TEST(ImplicitScene, SnapBackReleaseGoesOnAndStopEndsTheRunAtThePoint) {
+  const std::string weak = replaced(replaced(shippedBar(), "until: 0.04 ", "until: 0.004"),
+                                    "tensile_strength: 2.9, softening_modulus: 8.184", "tensile_strength: 2.9, softening_modulus: 400");
+  ecm::test::TempDir dir;
+  {
+    const Scene scene = readScene(io::parseYaml(weak, "bar.yaml"));
+    ASSERT_EQ(scene.solver.snapBack, SnapBackPolicy::Release);
+    const RunResult r = runScene(scene, quietOptions(dir.path() / "release"));
+    ASSERT_TRUE(r.completed) << r.error;
+    const auto j = nlohmann::json::parse(fileText(dir.path() / "release" / "summary.json"));
+    EXPECT_GT(j["snap_back_releases"].get<long>(), 0);
+  }
+  {
+    const Scene scene = readScene(io::parseYaml(replaced(weak, "  control:", "  snap_back: stop\n  control:"), "bar.yaml"));
+    ASSERT_EQ(scene.solver.snapBack, SnapBackPolicy::Stop);
+    const RunResult r = runScene(scene, quietOptions(dir.path() / "stop"));
+    EXPECT_FALSE(r.completed);
+    expectContains(r.error, "a material snap-back persists after a halving");
+    expectContains(r.error, "snap-back");
+    expectContains(r.error, "; particle ");
+    // The weak row is y = 490-500 mm: the point named lies in it.
+    const auto at = r.error.find(") mm");
+    ASSERT_NE(at, std::string::npos);
+    const double y = std::stod(r.error.substr(r.error.rfind(", ", at) + 2));
+    EXPECT_GT(y, 489.0);
+    EXPECT_LT(y, 501.0);
+    const auto j = nlohmann::json::parse(fileText(dir.path() / "stop" / "summary.json"));
+    EXPECT_EQ(j["status"], "failed");
+    EXPECT_EQ(j["snap_back_releases"].get<long>(), 0);
+    EXPECT_TRUE(std::filesystem::exists(dir.path() / "stop" / "checkpoint.bin"));  // the last converged state
+  }
+}
+
+// An opening that cannot measure what it names is refused before anything runs: a point off the
+// grid nodes and coefficients that are all 0 at their lines (Scene::validate), a node that no
+// particle reaches (a margin node of the grid: its displacement would stay 0 and the control
+// would compress the bar, peak 163 N against 58 N) when the run is set up, naming the term.
+TEST(ImplicitScene, AnOpeningOffTheBodyOrOffTheNodesIsRefused) {
+  const std::string bar = shippedBar();
+  const auto err = [](const std::string& text) { return inputError([&] { readScene(io::parseYaml(text, "bar.yaml")); }); };
+  {
+    const auto e = err(replaced(bar, "{node: [0, 500], component: y", "{node: [5, 500], component: y"));
+    expectContains(e.what(), "solver.control.indirect.opening[0].node");
+    expectContains(e.what(), "(5, 500) mm is not a grid node (the nearest is (10, 500) mm)");
+    EXPECT_EQ(e.line, 31);
+  }
+  {
+    std::string zero = bar;
+    for (std::size_t at; (at = zero.find("coefficient: 0.333333333333333333")) != std::string::npos || (at = zero.find("coefficient: -0.333333333333333333")) != std::string::npos;)
+      zero.replace(at, zero.find('}', at) - at, "coefficient: 0");
+    expectContains(err(zero).what(), "every coefficient is 0");
+  }
+  const Scene margin = readScene(io::parseYaml(replaced(bar, "{node: [0, 500], component: y", "{node: [-10, 500], component: y"), "bar.yaml"));
+  ecm::test::TempDir dir;
+  try {
+    runScene(margin, quietOptions(dir.path() / "margin"));
+    ADD_FAILURE() << "an opening on a node no particle reaches was accepted";
+  } catch (const std::invalid_argument& e) {
+    expectContains(e.what(), "solver.control.indirect.opening[0]: the node (-10, 500) mm is reached by no particle");
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "margin" / "history.csv"));  // refused before any output
+}
+
+// Quadratic B-splines are refused in implicit scenes with the reason: without a boundary
+// modification a held edge makes the stresses oscillate next to it (the bar cracked at its held
+// ends at 1.12 MPa, not in its weak row at 2.9 MPa).
+TEST(ImplicitScene, BSplinesAreRefusedWithTheReason) {
+  const auto e = inputError([&] {
+    readScene(io::parseYaml(replaced(shippedBar(), "shape_function: linear", "shape_function: bspline2"), "bar.yaml"));
+  });
+  expectContains(e.what(), "bspline2 is not offered with implicit_static");
+  EXPECT_EQ(e.line, 23);
+}
+
+// The bar pulled by its top under displacement control: past its peak the closed form snaps back
+// (docs/implicit.md), so the run must end there, and say why and what traces it.
+TEST(ImplicitScene, DisplacementControlStopsAtTheStructuralSnapBackAndSaysSo) {
+  const std::string bar = shippedBar();
+  std::string text = bar.substr(0, bar.find("  control:")) + "  load_step: 0.01\n  max_halvings: 4\n" + bar.substr(bar.find("end_time:"));
+  text = replaced(text, "displacement: {y: {type: hold, value: 0}}", "displacement: {y: {type: linear_ramp, value: 0.12, time: 1}}");
+  const Scene scene = readScene(io::parseYaml(text, "bar.yaml"));
+  ASSERT_FALSE(scene.solver.implicit->indirect);
+  ecm::test::TempDir dir;
+  const RunResult r = runScene(scene, quietOptions(dir.path() / "out"));
+  EXPECT_FALSE(r.completed);
+  // It got to the peak (2.9 MPa x 20 mm^2 = 58 N) before it failed.
+  EXPECT_NEAR(r.peakLoad, 58.0, 0.01 * 58.0);
+  expectContains(r.error, "passed a limit point");
+  expectContains(r.error, "indirect control");
+}
+
+// uGIMP with a free margin of grid nodes: the block's edge particles reach the margin nodes with
+// weight and gradient exactly 0; those nodes carry nothing and are not unknowns (before, the
+// first step's tangent was singular). The block (E 1000 MPa, nu 0, 10 x 10 mm, 1 mm thick) is
+// pulled 0.01 mm: a uniform strain 1e-3 that uGIMP reproduces exactly, so the top's reaction is
+// E A eps = 1000 x 10 x 1e-3 = 10 N to round-off.
+TEST(ImplicitScene, UGimpWithAFreeMarginOfNodesRunsAndMatchesTheElasticClosedForm) {
+  const std::string text = R"(name: min-ugimp
+grid: {origin: [-10, -10], cell_size: [10, 10], cells: [3, 3]}
+thickness: 1
+particles_per_cell: 2
+materials:
+  - {name: e, model: linear_elastic, hypothesis: plane_stress, youngs_modulus: 1000, poisson_ratio: 0.0, density: 1e-9}
+bodies:
+  - {rectangle: {min: [0, 0], max: [10, 10]}, material: e}
+solver: {scheme: implicit_static, shape_function: ugimp, load_step: 1}
+end_time: 1
+conditions:
+  - {name: base, box: {min: [-1, 0], max: [11, 0]}, fixed: [y]}
+  - {name: corner, box: {min: [-1, -1], max: [0, 0]}, fixed: [x]}
+  - {name: top, box: {min: [-1, 10], max: [11, 10]}, displacement: {y: {type: linear_ramp, value: 0.01, time: 1}}}
+)";
+  const Scene scene = readScene(io::parseYaml(text, "min-ugimp.yaml"));
+  ecm::test::TempDir dir;
+  const RunResult r = runScene(scene, quietOptions(dir.path() / "out"));
+  ASSERT_TRUE(r.completed) << r.error;
+  EXPECT_NEAR(r.peakLoad, 10.0, 1e-9 * 10.0);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The implicit quasi-static solver (mpm/implicit_solver.hpp). Expected values: the patch test
+// The implicit quasi-static solver (mpm/implicit/implicit_solver.hpp). Expected values: the patch test
 // (a uniform strain is an exact solution of the discrete equations when the particles integrate
 // the shape functions' gradients exactly, as regular 2 x 2 seeding does for every shape function
 // here), central differences of the assembled internal force for the tangent, and elasticity in
@@ -9,8 +9,8 @@
 #include <cmath>
 
 #include "bar_closed_form.hpp"
-#include "mpm/implicit_solver.hpp"
-#include "mpm/newton_cycle.hpp"
+#include "mpm/implicit/implicit_solver.hpp"
+#include "mpm/implicit/newton_cycle.hpp"
 #include "test_scenes.hpp"
 
 namespace ecm::mpm::test {
@@ -67,7 +67,7 @@ INSTANTIATE_TEST_SUITE_P(EveryShapeFunction, ImplicitPatch,
 // bar, delta = F L / (E A) (A = 100 mm x 1 mm of thickness), exactly as the grid spreads the load.
 TEST(Implicit, ABlockUnderALoadStretchesAsElasticityGives) {
   Scene s = tensionBlock(1000.0, 10);
-  s.solver.damping.local = 0.0;
+  s.solver.explicitScheme.damping.local = 0.0;
   s.loads[0].history = TimeFunction::linearRamp(1.0, 1.0);  // pseudo-time: the load factor goes 0 -> 1 over [0, 1]
   s.endTime = 1.0;
   ImplicitSolver solver(s);
@@ -142,7 +142,7 @@ TEST(Implicit, PureBendingConvergesToElasticityAtSecondOrder) {
 // The assembled tangent against central differences of the assembled internal force, on a
 // notched block of the paper's concrete pulled past cracking: cracked points loading and
 // unloading, and intact ones, all in the scene.
-// The cycle guard's rule (mpm/newton_cycle.hpp): points that switch between loading and
+// The cycle guard's rule (mpm/implicit/newton_cycle.hpp): points that switch between loading and
 // unloading while the residual grows after a fresh tangent are flagged for the secant tangent;
 // a stale tangent's growth flags nothing (it is the factorisation's age, not a kink); the flags
 // go once the residual has fallen kSettled times in a row.
@@ -251,8 +251,9 @@ namespace {
 // cannot follow. Indirect control on the opening across the weak row traces it.
 constexpr double kBarLength = 1000.0, kBarWeakFt = 2.9;
 
-Scene snapBackBar() {
+Scene snapBackBar(ShapeFunction shape = ShapeFunction::Linear) {
   Scene s;
+  s.solver.shapeFunction = shape;
   s.name = "snap-back-bar";
   s.grid = {Vec2(-10.0, -10.0), Vec2(10.0, 10.0), 4, 102};
   MaterialParams strong = paperConcrete();
@@ -274,9 +275,14 @@ Scene snapBackBar() {
   return s;
 }
 
-TEST(Implicit, IndirectControlTracesTheBarsStructuralSnapBack) {
+// Linear and uGIMP shape functions (quadratic B-splines are refused in implicit scenes: no
+// boundary treatment). The bar's grid has a free margin of nodes: uGIMP particles at the body's
+// edge reach the margin nodes with weight and gradient exactly 0, which must not become unknowns.
+class ImplicitBar : public ::testing::TestWithParam<ShapeFunction> {};
+
+TEST_P(ImplicitBar, IndirectControlTracesTheBarsStructuralSnapBack) {
   const DamageLawParams law{32000.0, kBarWeakFt, ecm::test::kEp, ecm::test::kN};
-  ImplicitSolver solver(snapBackBar());
+  ImplicitSolver solver(snapBackBar(GetParam()));
   const Grid& g = solver.setup().scene.grid;
   IndirectControl control;
   control.driven = {2};
@@ -302,9 +308,9 @@ TEST(Implicit, IndirectControlTracesTheBarsStructuralSnapBack) {
     if (sigma > peakSigma) peakSigma = sigma, peakDelta = delta;
     if (sigma < peakSigma) deltaAfterPeak = std::min(deltaAfterPeak, delta);
   }
-  std::printf("[ snap-back bar ] peak %.4f MPa at delta %.5f mm, delta falls to %.5f mm after it; worst distance to "
+  std::printf("[ snap-back bar, %s ] peak %.4f MPa at delta %.5f mm, delta falls to %.5f mm after it; worst distance to "
               "the closed form %.2e; %d Newton iterations in %d steps; load factor %.5f\n",
-              peakSigma, peakDelta, deltaAfterPeak, worst, iterations, steps, solver.loadFactor());
+              toString(GetParam()), peakSigma, peakDelta, deltaAfterPeak, worst, iterations, steps, solver.loadFactor());
   EXPECT_NEAR(peakSigma, kBarWeakFt, 1e-3 * kBarWeakFt);
   // Traced through the snap-back: past the peak delta falls to the closed form's least value.
   const auto top = std::max_element(exact.sigma.begin(), exact.sigma.end()) - exact.sigma.begin();
@@ -320,6 +326,12 @@ TEST(Implicit, IndirectControlTracesTheBarsStructuralSnapBack) {
       EXPECT_EQ(p.material[i], 1) << "only the weak row cracks";
     }
 }
+// (uGIMP is not instantiated yet: on this bar its Newton stalls at a relative residual of 1e-4 at
+// a load factor of 0.048, once the top particles' domains have moved into the margin cells, while
+// the same shape function runs the block of ImplicitScene.UGimpWithAFreeMarginOfNodes...: an open
+// question, docs/implicit.md.)
+INSTANTIATE_TEST_SUITE_P(ShapeFunctions, ImplicitBar, ::testing::Values(ShapeFunction::Linear),
+                         [](const auto& info) { return std::string(toString(info.param)); });
 
 // The extrapolated start (docs/implicit.md) changes where Newton begins, not what it converges
 // to: on the bar through its snap-back both starts stay on the closed form (to 1e-3 of f_t', the
@@ -329,9 +341,10 @@ TEST(Implicit, TheExtrapolatedStartSavesIterationsOnTheSameCurve) {
   const BarClosedForm exact(law, kBarLength, ecm::test::kBandWidth, 1e-3);
   int iterations[2] = {0, 0};
   for (const bool extrapolate : {false, true}) {
-    ImplicitOptions options;
-    options.extrapolate = extrapolate;
-    ImplicitSolver solver(snapBackBar(), 1, options);
+    Scene scene = snapBackBar();
+    if (!scene.solver.implicit) scene.solver.implicit = ImplicitSettings{};
+    scene.solver.implicit->extrapolate = extrapolate;
+    ImplicitSolver solver(scene, 1);
     const Grid& g = solver.setup().scene.grid;
     IndirectControl control;
     control.driven = {2};

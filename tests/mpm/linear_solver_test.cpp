@@ -1,4 +1,4 @@
-// The implicit steps' sparse LU (mpm/linear_solver.hpp): each solver the build has solves a small
+// The implicit steps' sparse LU (mpm/implicit/linear_solver.hpp): each solver the build has solves a small
 // unsymmetric system to round-off and refuses a singular one, and UMFPACK's shared library is
 // loaded by the first UMFPACK factorisation, not before: an explicit run does not carry it (nor
 // the BLAS, LAPACK and Fortran run-time it pulls in, 3.6 MB resident).
@@ -7,8 +7,8 @@
 #include <fstream>
 #include <string>
 
-#include "mpm/linear_solver.hpp"
-#include "mpm/solver.hpp"
+#include "mpm/implicit/linear_solver.hpp"
+#include "mpm/explicit/solver.hpp"
 #include "test_scenes.hpp"
 
 namespace ecm::mpm::test {

@@ -31,10 +31,10 @@ Scene twoDisks(int cells, double cflScale = 1.0, ShapeFunction shape = ShapeFunc
   s.bodies = {{Shape::circle(Vec2(0.25, 0.25), 0.2), 0, false, Vec2(0.1, 0.1)},
               {Shape::circle(Vec2(0.75, 0.75), 0.2), 0, false, Vec2(-0.1, -0.1)}};
   s.particlesPerCell = 2;
-  s.solver.scheme = UpdateScheme::MUSL;
+  s.solver.explicitScheme.scheme = UpdateScheme::MUSL;
   s.solver.shapeFunction = shape;
-  s.solver.flip = 1.0;
-  s.solver.cfl = cflScale * 0.2 * std::sqrt(1000.0 * 0.7 / (1.3 * 0.4) / 1000.0);
+  s.solver.explicitScheme.flip = 1.0;
+  s.solver.explicitScheme.cfl = cflScale * 0.2 * std::sqrt(1000.0 * 0.7 / (1.3 * 0.4) / 1000.0);
   s.endTime = 2.0253164556962027;  // through contact (touch at 1.09) and separation
   return s;
 }

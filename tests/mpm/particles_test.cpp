@@ -1,5 +1,5 @@
 // The particle arrays: band storage order.
-#include "mpm/particles.hpp"
+#include "mpm/core/particles.hpp"
 
 #include <gtest/gtest.h>
 

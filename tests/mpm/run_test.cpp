@@ -8,8 +8,9 @@
 
 #include "../io/temp_dir.hpp"
 #include "io/csv_reader.hpp"
+#include "mpm/output/run_files.hpp"
 #include "mpm/run.hpp"
-#include "mpm/vtu_writer.hpp"
+#include "mpm/output/vtu_writer.hpp"
 #include "test_scenes.hpp"
 
 namespace ecm::mpm::test {

@@ -1,4 +1,4 @@
-// The RVE sample generator (mpm/rve_sample.hpp) and the `rve:` body of scenes: no overlaps, the
+// The RVE sample generator (mpm/scene/rve_sample.hpp) and the `rve:` body of scenes: no overlaps, the
 // gap and the ITZ thickness are kept, the same seed gives the same sample, the target fraction
 // is hit, infeasible targets and bad values are refused; a small RVE cracks first in its ITZ.
 #include <gtest/gtest.h>
@@ -7,10 +7,10 @@
 #include <numbers>
 
 #include "../io/temp_dir.hpp"
-#include "mpm/rve_sample.hpp"
-#include "mpm/scene_yaml.hpp"
-#include "mpm/seeding.hpp"
-#include "mpm/solver.hpp"
+#include "mpm/scene/rve_sample.hpp"
+#include "mpm/scene/scene_yaml.hpp"
+#include "mpm/setup/seeding.hpp"
+#include "mpm/explicit/solver.hpp"
 
 namespace ecm::mpm::test {
 namespace {

@@ -1,4 +1,4 @@
-// The scatter order (mpm/scatter_order.hpp): the plan widens each chunk's measured rows by one
+// The scatter order (mpm/explicit/scatter_order.hpp): the plan widens each chunk's measured rows by one
 // row each way, every chunk lands in exactly one group of its colour, and two groups of one
 // colour never reach the same node row, whatever the rows (so they scatter at once safely); a
 // group waits for exactly the groups of earlier colours that reach one of its rows, and the
@@ -11,7 +11,7 @@
 #include <random>
 #include <set>
 
-#include "mpm/scatter_order.hpp"
+#include "mpm/explicit/scatter_order.hpp"
 
 namespace ecm::mpm::test {
 namespace {

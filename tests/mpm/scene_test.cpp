@@ -3,7 +3,7 @@
 
 #include <numbers>
 
-#include "mpm/seeding.hpp"
+#include "mpm/setup/seeding.hpp"
 #include "test_scenes.hpp"
 
 namespace ecm::mpm::test {

@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "../io/temp_dir.hpp"
-#include "mpm/memory_estimate.hpp"
-#include "mpm/presets.hpp"
-#include "mpm/scene_yaml.hpp"
+#include "mpm/scene/memory_estimate.hpp"
+#include "mpm/scene/presets.hpp"
+#include "mpm/scene/scene_yaml.hpp"
 
 namespace ecm::mpm::test {
 namespace {
@@ -69,7 +69,7 @@ loads:
      history: {type: table, points: [[0, 0], [1e-3, 1]]}}
 )";
   const Scene s = readScene(io::parseYaml(text, "scene.yaml"));
-  EXPECT_EQ(s.solver.scheme, UpdateScheme::MUSL);
+  EXPECT_EQ(s.solver.explicitScheme.scheme, UpdateScheme::MUSL);
   EXPECT_EQ(s.solver.shapeFunction, ShapeFunction::UGimp);
   EXPECT_EQ(s.solver.effectiveSize, EffectiveSizeRule::Oriented);
   EXPECT_DOUBLE_EQ(s.solver.gravity[1], -9810.0);
@@ -272,7 +272,7 @@ TEST(SceneYaml, StopWhenKeysAreReadAndChecked) {
 namespace ecm::mpm::test {
 namespace {
 
-// A preset sets particles per cell, shape function, scheme and CFL (mpm/presets.hpp); the scene
+// A preset sets particles per cell, shape function, scheme and CFL (mpm/scene/presets.hpp); the scene
 // may not set them as well, and an unknown preset is refused with the allowed names.
 TEST(SceneYaml, PresetSetsItsKnobsAndOwnsThem) {
   const std::string base = R"(name: t
@@ -287,10 +287,10 @@ end_time: 1e-3
     const Scene s = readScene(io::parseYaml(base + "preset: " + std::string(p.name) + "\nsolver: {flip: 0.9}\n", "scene.yaml"));
     EXPECT_EQ(s.preset, p.name);
     EXPECT_EQ(s.particlesPerCell, p.particlesPerCell);
-    EXPECT_EQ(s.solver.cfl, p.cfl);
+    EXPECT_EQ(s.solver.explicitScheme.cfl, p.cfl);
     EXPECT_EQ(s.solver.shapeFunction, p.shapeFunction);
-    EXPECT_EQ(s.solver.scheme, p.scheme);
-    EXPECT_EQ(s.solver.flip, 0.9);  // knobs outside the preset stay the scene's
+    EXPECT_EQ(s.solver.explicitScheme.scheme, p.scheme);
+    EXPECT_EQ(s.solver.explicitScheme.flip, 0.9);  // knobs outside the preset stay the scene's
   }
   // The presets order speed against accuracy: particles per cell and time steps never fewer.
   const Preset& fast = *findPreset("fast");

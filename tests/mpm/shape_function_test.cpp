@@ -5,7 +5,7 @@
 
 #include <random>
 
-#include "mpm/shape_function.hpp"
+#include "mpm/core/shape_function.hpp"
 
 namespace ecm::mpm {
 namespace {

@@ -1,5 +1,5 @@
 // stop_when: a softening run ends at the first output row where the watched reaction has fallen
-// below the given fraction of its peak (mpm/stop_when.hpp); the watch survives a restart.
+// below the given fraction of its peak (mpm/scene/stop_when.hpp); the watch survives a restart.
 #include <gtest/gtest.h>
 
 #include <algorithm>

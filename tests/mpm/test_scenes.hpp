@@ -4,7 +4,7 @@
 #include <numbers>
 
 #include "../paper_constants.hpp"
-#include "mpm/solver.hpp"
+#include "mpm/explicit/solver.hpp"
 
 namespace ecm::mpm::test {
 
@@ -59,8 +59,8 @@ struct BarSetup {
     s.bodies = {{Shape::rectangle(Vec2(x0(), 2.0 * h()), Vec2(x0() + length, 3.0 * h())), 0, false, Vec2::Zero()}};
     s.particlesPerCell = 2;
     s.solver.shapeFunction = shape;
-    s.solver.scheme = scheme;
-    s.solver.cfl = cfl;
+    s.solver.explicitScheme.scheme = scheme;
+    s.solver.explicitScheme.cfl = cfl;
     return s;
   }
   // v(X, 0) = v0 cos(pi (X - x0) / L): mode 1, u(X, t) = v0 / omega cos(...) sin(omega t).
@@ -86,7 +86,7 @@ inline Scene tensionBlock(double force = 1000.0, int cells = 10) {
   s.conditions = {NodeCondition::fixed("base", {Vec2(-1.0, 0.0), Vec2(101.0, 0.0)})};
   s.loads = {{"pull", {Vec2(-1.0, 100.0 - h / 2.0), Vec2(101.0, 101.0)}, LoadTarget::Particles, Vec2(0.0, force),
               TimeFunction::smoothRamp(1.0, 3e-4)}};
-  s.solver.damping.local = 0.3;
+  s.solver.explicitScheme.damping.local = 0.3;
   s.endTime = 1.2e-3;
   return s;
 }
@@ -106,7 +106,7 @@ inline Scene notchedCrackingBlock() {
   top.box = {Vec2(-20.0, 100.0), Vec2(120.0, 100.0)};
   top.component[1] = {Prescribed::Velocity, TimeFunction::smoothRamp(150.0, 2e-5)};
   s.conditions.push_back(top);
-  s.solver.damping.local = 0.1;
+  s.solver.explicitScheme.damping.local = 0.1;
   return s;
 }
 

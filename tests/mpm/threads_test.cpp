@@ -1,6 +1,6 @@
 // Results do not depend on the thread count, bitwise: every node sums its particles in the fixed
-// order of mpm/scatter_order.hpp (colour, block, particle index), every sum over particles or
-// nodes is taken in fixed chunks (mpm/ordered_sum.hpp, the dissipation per chunk of the stress
+// order of mpm/explicit/scatter_order.hpp (colour, block, particle index), every sum over particles or
+// nodes is taken in fixed chunks (mpm/core/ordered_sum.hpp, the dissipation per chunk of the stress
 // phase), and each particle's gather and update is its own. So the same scene on 1, 2 and 3
 // threads gives the same bits, for every update scheme and shape function, through cracking.
 #include <gtest/gtest.h>
@@ -14,7 +14,7 @@ namespace {
 
 Scene crackingBlock(UpdateScheme scheme, ShapeFunction shape) {
   Scene s = notchedCrackingBlock();
-  s.solver.scheme = scheme;
+  s.solver.explicitScheme.scheme = scheme;
   s.solver.shapeFunction = shape;
   return s;
 }

@@ -101,8 +101,8 @@ TEST(StudyPlan, GridAndOneAtATimeDesigns) {
   const auto grid = planStudy(parse(barStudy("  solver.cfl: [0.2, 0.3]\n  solver.scheme: [usl, musl, usf]\n"), tmp));
   ASSERT_EQ(grid.size(), 6u);
   EXPECT_EQ(grid[1].label, "solver.cfl=0.2 solver.scheme=musl");  // the last knob varies fastest
-  EXPECT_EQ(grid[1].scene->solver.scheme, mpm::UpdateScheme::MUSL);
-  EXPECT_DOUBLE_EQ(grid[4].scene->solver.cfl, 0.3);
+  EXPECT_EQ(grid[1].scene->solver.explicitScheme.scheme, mpm::UpdateScheme::MUSL);
+  EXPECT_DOUBLE_EQ(grid[4].scene->solver.explicitScheme.cfl, 0.3);
 
   // One at a time around the base (cfl 0.3, usl in the scene): the base, then each knob's other values.
   const auto oat = planStudy(parse(barStudy("  solver.cfl: [0.2, 0.3, 0.6]\n  grid.refinement: [1, 2]\n",

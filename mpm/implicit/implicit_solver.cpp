@@ -1,0 +1,694 @@
+// Implicit quasi-static load steps (mpm/implicit/implicit_solver.hpp).
+#include "mpm/implicit/implicit_solver.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mpm/core/errors.hpp"
+#include "mpm/implicit/newton_cycle.hpp"
+#include "mpm/setup/step_setup.hpp"
+#include "mpm/setup/seeding.hpp"
+
+namespace ecm::mpm {
+
+namespace {
+
+// The prescribed displacement of a component over [t, t + dt], or NaN when it is free.
+double prescribedIncrement(const ComponentCondition& c, double t, double dt) {
+  switch (c.kind) {
+    case Prescribed::Free: return NAN;
+    case Prescribed::Fixed: return 0.0;
+    case Prescribed::Velocity: return dt * c.history(t + dt);
+    case Prescribed::Displacement: return c.history(t + dt) - c.history(t);
+  }
+  return NAN;
+}
+
+// Newton proper (a factorisation at every iteration) has stalled when its relative residual did
+// not halve over the last kStallWindow iterations (docs/implicit.md, "Load steps"): converging,
+// it halves it at every iteration or two. (With a kept factorisation the test cost more
+// halvings than it saved: left to max_iterations there, as is the last halving's try.)
+constexpr int kStallWindow = 6;
+bool stalled(const std::vector<double>& residuals) {
+  const std::size_t n = residuals.size();
+  return n > kStallWindow && residuals[n - 1] > 0.5 * residuals[n - 1 - kStallWindow];
+}
+
+// Why an attempt at a piece failed: what the step loop does next depends on it.
+enum class NewtonFailure {
+  None,
+  LeftGrid,         // a particle's shape-function support left the grid
+  Material,         // a material update failed (its status says how; SnapBack among them)
+  Singular,         // the tangent is singular
+  NotConverged,     // Newton ran out of iterations or stalled (it keeps its best iterate)
+  OnsetOvershoot,   // the piece carried a point past its onset by more than the scene allows
+  ControlBlind,     // indirect control: c . du does not change with the load factor
+};
+
+// Newton's iterates of an attempt: the relative residual of each, and the best iterate an attempt
+// keeps when it runs out of iterations or stalls (docs/implicit.md, "Load steps").
+struct NewtonHistory {
+  std::vector<double> residuals;
+  double bestRelative = INFINITY;
+  Eigen::VectorXd bestDu;
+  double bestDLambda = 0.0;
+
+  // An iterate with its relative residual; `eligible`: it may be kept (under indirect control,
+  // only one that meets the control).
+  void observe(double relative, bool eligible, const Eigen::VectorXd& du, double dLambda = 0.0) {
+    residuals.push_back(relative);
+    if (eligible && relative < bestRelative) bestRelative = relative, bestDu = du, bestDLambda = dLambda;
+  }
+  // Newton ends at `iteration`: out of iterations, or Newton proper (reuse 0) has stalled, which
+  // the last resort does not test.
+  bool ends(int iteration, int maxIterations, double reuseRatio, bool lastResort) const {
+    return iteration >= maxIterations || (reuseRatio <= 0.0 && !lastResort && stalled(residuals));
+  }
+  // An earlier iterate was better than the last one (`relative`).
+  bool hasBetterThan(double relative) const { return bestDu.size() > 0 && bestRelative < relative; }
+};
+
+}  // namespace
+
+// One try at a step: its geometry, the prescribed components and loads, and Newton's iterate.
+struct ImplicitSolver::Attempt {
+  std::vector<std::uint8_t> prescribed;  // per node component
+  Eigen::VectorXd du;                    // per node component (mm)
+  Eigen::VectorXd external;              // loads and gravity at the step's end, per node component (N)
+  Eigen::VectorXd externalStart;         // the same at the step's start
+  Eigen::VectorXd startForce;            // the internal forces at the step's start (du = 0), on its geometry
+  Eigen::VectorXd direction;             // indirect control: the driven components' reference (mm per unit load factor)
+  double dLambda = 0.0;                  // indirect control: the load factor's increment
+  double dTau = 0.0;                     // indirect control: the opening's increment
+  Trial trial;                           // at du
+  ImplicitStepReport report;
+  SnapBackPolicy snapBack = SnapBackPolicy::Stop;
+  double reuseRatio = 0.1;               // ImplicitOptions::reuseRatio, 0 after a failed attempt (Newton proper)
+  int maxIterations = 25;                // ImplicitOptions::maxIterations, 4 times that at the last halving
+  bool lastResort = false;               // the last halving: no early stall test, its whole maxIterations
+  bool stalled = false;                  // Newton ran out of iterations; du and trial hold its last iterate
+  UpdateStatus failedStatus = UpdateStatus::Converged;  // of the material update that failed
+  // Why it failed: the iteration, the relative residual and the particle (SIZE_MAX: none).
+  int failedIteration = 0;
+  double failedResidual = 0.0;
+  std::size_t failedParticle = SIZE_MAX;
+  NewtonFailure reason = NewtonFailure::None;
+  std::string why;  // the reason in words, for the report
+
+  // Records why the attempt failed; returns false, for `return a.fail(...)`.
+  bool fail(int iteration, double residual, NewtonFailure kind, std::string words) {
+    failedIteration = iteration, failedResidual = residual, reason = kind, why = std::move(words);
+    return false;
+  }
+  // A material update of `t` failed: the particle and its material's explanation.
+  bool failInMaterial(int iteration, const Trial& t, const StepSetup& setup, const Particles& p) {
+    failedParticle = t.failed;
+    failedStatus = t.failure.status;
+    return fail(iteration, 0.0, NewtonFailure::Material, setup.materials[p.material[t.failed]].explain(t.failure));
+  }
+};
+
+ImplicitSolver::ImplicitSolver(Scene scene, int threads)
+    : settings_(scene.solver.implicit.value_or(ImplicitSettings{})), lu_(settings_.linearSolver) {
+  Particles seeded = seedParticles(scene);
+  setup_ = makeStepSetup(std::move(scene), seeded.size(), threads, 4096);
+  particles_ = std::move(seeded);
+  conditions_ = conditionStates(setup_.scene);
+  loads_ = loadStates(setup_.scene, particles_);
+  for (Vec2& v : particles_.velocity) v.setZero();  // quasi-static: no initial velocities
+}
+
+Energies ImplicitSolver::energies() const {
+  double strain = 0.0;
+  for (std::size_t i = 0; i < particles_.size(); ++i) strain += 0.5 * particles_.volume[i] * particles_.stress[i].dot(particles_.strain[i]);
+  return {0.0, strain, totals_.externalWork, totals_.dissipated, 0.0};
+}
+
+bool ImplicitSolver::prepare(double dt, const IndirectControl* control, Attempt& a) {
+  const Scene& scene = setup_.scene;
+  const Grid& grid = scene.grid;
+  const double t0 = time_, t1 = time_ + dt;
+  const auto components = static_cast<Eigen::Index>(2 * grid.nodeCount());
+  // The prescribed components and their increments.
+  // (Under indirect control the driven conditions' components follow the load factor instead:
+  // their direction is the reference, their increment found by the step.)
+  a.prescribed.assign(static_cast<std::size_t>(components), 0);
+  a.du.setZero(components);
+  a.direction.setZero(components);
+  for (std::size_t c = 0; c < scene.conditions.size(); ++c) {
+    const NodeCondition& cond = scene.conditions[c];
+    const bool driven = control && std::find(control->driven.begin(), control->driven.end(), c) != control->driven.end();
+    for (const std::int32_t node : conditions_[c].nodes) {
+      Vec2 du(prescribedIncrement(cond.component[0], t0, dt), prescribedIncrement(cond.component[1], t0, dt));
+      if (cond.field) du = dt * cond.field->scale(t1) * cond.field->gradient * (grid.nodePosition(node) - cond.field->origin);
+      for (int d = 0; d < 2; ++d) {
+        if (std::isnan(du[d])) continue;
+        a.prescribed[2 * static_cast<std::size_t>(node) + static_cast<std::size_t>(d)] = 1;
+        const bool follows = driven && !cond.field && cond.component[static_cast<std::size_t>(d)].kind != Prescribed::Fixed;
+        if (follows)
+          a.direction[2 * node + d] = control->reference[d];
+        else
+          a.du[2 * node + d] = du[d];
+      }
+    }
+  }
+  // The geometry of the committed state (the pieces of a halved step share it).
+  if (geometryStep_ != steps_ || geometry_.prescribed != a.prescribed) {
+    std::size_t outside = 0;
+    geometryStep_ = -1;
+    if (!stepGeometry(setup_, particles_, a.prescribed, geometry_, outside)) {
+      a.failedParticle = outside;
+      return a.fail(0, 0.0, NewtonFailure::LeftGrid, "its shape-function support left the grid");
+    }
+    geometryStep_ = steps_;
+  }
+  // Loads and gravity at the step's start and end.
+  const int nx = grid.nodesX(), support = supportSize(scene.solver.shapeFunction);
+  const auto spread = [&](Eigen::VectorXd& into, const Stencil& s, const Vec2& f) {
+    for (int j = 0; j < support; ++j)
+      for (int k = 0; k < support; ++k) {
+        const Eigen::Index n = s.base + j * nx + k;
+        into.segment<2>(2 * n) += s.wx[k] * s.wy[j] * f;
+      }
+  };
+  for (const auto& [into, t] : {std::pair<Eigen::VectorXd*, double>{&a.externalStart, t0}, {&a.external, t1}}) {
+    into->setZero(components);
+    if (scene.solver.gravity.squaredNorm() > 0.0)
+      for (std::size_t i = 0; i < particles_.size(); ++i) spread(*into, geometry_.stencils[i], particles_.mass[i] * scene.solver.gravity);
+    for (std::size_t l = 0; l < scene.loads.size(); ++l) {
+      const Load& load = scene.loads[l];
+      const Vec2 each = load.force * load.history(t) / static_cast<double>(loads_[l].members.size());
+      for (const std::int32_t m : loads_[l].members) {
+        if (load.target == LoadTarget::Nodes)
+          into->segment<2>(2 * static_cast<Eigen::Index>(m)) += each;
+        else
+          spread(*into, geometry_.stencils[static_cast<std::size_t>(m)], each);
+      }
+    }
+  }
+  return true;
+}
+
+ImplicitSolver::SavedState ImplicitSolver::saved() const {
+  SavedState s;
+  s.time = time_, s.loadFactor = lambda_, s.nextPiece = nextPiece_, s.nextOpening = nextOpening_, s.steps = steps_;
+  s.externalWork = totals_.externalWork, s.internalWork = internalWork_, s.dissipated = totals_.dissipated;
+  s.released = totals_.released;
+  for (const ConditionState& c : conditions_) {
+    s.reactions.push_back(c.reaction);
+    s.conditionDisplacements.push_back(c.displacement);
+  }
+  for (const Stencil& st : geometry_.stencils) s.stencilBases.push_back(st.base);
+  s.prescribed = geometry_.prescribed;
+  if (luPattern_ >= 0 && luPattern_ == geometry_.patternBuilds) s.factored = factored_;
+  s.lastIncrement = lastIncrement_, s.lastLoadFactorIncrement = lastLoadFactorIncrement_, s.lastOpening = lastOpening_;
+  return s;
+}
+
+void ImplicitSolver::restore(const SavedState& s) {
+  if (s.reactions.size() != conditions_.size() || s.conditionDisplacements.size() != conditions_.size())
+    throw std::invalid_argument("it has " + std::to_string(s.reactions.size()) + " conditions, the scene " +
+                                std::to_string(conditions_.size()));
+  if (s.lastIncrement.size() != 0 && s.lastIncrement.size() != 2 * static_cast<Eigen::Index>(setup_.scene.grid.nodeCount()))
+    throw std::invalid_argument("its last increment does not fit the scene's grid");
+  time_ = s.time, lambda_ = s.loadFactor, nextPiece_ = s.nextPiece, nextOpening_ = s.nextOpening, steps_ = s.steps;
+  lastIncrement_ = s.lastIncrement, lastLoadFactorIncrement_ = s.lastLoadFactorIncrement, lastOpening_ = s.lastOpening;
+  totals_.externalWork = s.externalWork, internalWork_ = s.internalWork, totals_.dissipated = s.dissipated;
+  totals_.released = s.released;
+  for (std::size_t c = 0; c < conditions_.size(); ++c) {
+    conditions_[c].reaction = s.reactions[c];
+    conditions_[c].displacement = s.conditionDisplacements[c];
+  }
+  // The geometry the next step compares its stencils with, and the factorisation on it: the
+  // next step then keeps or rebuilds the pattern, and reuses or renews K, as the saved run would.
+  geometry_ = StepGeometry{};
+  geometryStep_ = -1;
+  luPattern_ = -1;
+  factored_ = Eigen::SparseMatrix<double>();
+  lu_.forgetPattern();
+  if (s.stencilBases.empty()) return;
+  if (s.stencilBases.size() != particles_.size() || s.prescribed.size() != static_cast<std::size_t>(2 * setup_.scene.grid.nodeCount()))
+    throw std::invalid_argument("its step geometry does not fit the scene's particles and grid");
+  if (!restoreGeometry(setup_, particles_.size(), s.prescribed, s.stencilBases, geometry_))
+    throw std::invalid_argument("its step geometry has a stencil outside the grid");
+  if (s.factored.size() == 0) return;
+  const Eigen::SparseMatrix<double>& k = s.factored;
+  const Eigen::SparseMatrix<double>& pattern = geometry_.pattern;
+  const bool samePattern = k.rows() == pattern.rows() && k.cols() == pattern.cols() && k.nonZeros() == pattern.nonZeros() &&
+                           std::equal(k.outerIndexPtr(), k.outerIndexPtr() + k.cols() + 1, pattern.outerIndexPtr()) &&
+                           std::equal(k.innerIndexPtr(), k.innerIndexPtr() + k.nonZeros(), pattern.innerIndexPtr());
+  if (!samePattern) throw std::invalid_argument("its factorised tangent does not fit its step geometry");
+  if (!lu_.factorize(k)) throw std::invalid_argument("its factorised tangent is singular");
+  factored_ = k;
+  luPattern_ = geometry_.patternBuilds;
+}
+
+Eigen::SparseMatrix<double> ImplicitSolver::tangentAtStart(double dt) {
+  Attempt a;
+  if (!prepare(dt, nullptr, a)) return {};
+  evaluateTrial(setup_, particles_, geometry_, Eigen::VectorXd::Zero(a.du.size()), true, a.snapBack, a.trial);
+  return a.trial.tangent;
+}
+
+bool ImplicitSolver::factorize(const Eigen::SparseMatrix<double>& k, Attempt& a) {
+  const double start = omp_get_wtime();
+  if (luPattern_ != geometry_.patternBuilds) lu_.forgetPattern();
+  const bool ok = lu_.factorize(k);
+  luPattern_ = ok ? geometry_.patternBuilds : -1;
+  if (ok) factored_ = k;
+  a.report.linearSolveSeconds += omp_get_wtime() - start;
+  a.report.factorizations++;
+  return ok;
+}
+
+Eigen::VectorXd ImplicitSolver::solve(const Eigen::VectorXd& b, Attempt& a) {
+  const double start = omp_get_wtime();
+  Eigen::VectorXd x = lu_.solve(b);
+  a.report.linearSolveSeconds += omp_get_wtime() - start;
+  return x;
+}
+
+bool ImplicitSolver::attempt(double dt, Attempt& a) {
+  if (!prepare(dt, nullptr, a)) return false;
+  const auto components = a.du.size();
+  // Newton on the unknowns.
+  const DofMap& dofs = geometry_.dofs;
+  const int n = dofs.unknowns();
+  const auto residualOf = [&](const Trial& t, double& relative) {
+    Eigen::VectorXd r(n);
+    for (int u = 0; u < n; ++u) r[u] = a.external[dofs.component[static_cast<std::size_t>(u)]] - t.internalForce[dofs.component[static_cast<std::size_t>(u)]];
+    relative = r.norm() / std::max({a.external.norm(), t.internalForce.norm(), 1e-300});
+    return r;
+  };
+  // The predictor: linearised at the step's start (du = 0), loaded by the prescribed increments
+  // through the coupling K_fp: K_ff du_f = (f_ext - f_int)_f - (K du_p)_f. Starting Newton at the
+  // prescribed increments alone would strain the boundary's layer of particles with all of them.
+  // K_ff is the last factorisation while the unknowns are those it was made for.
+  if (n > 0) {
+    const Eigen::VectorXd prescribedIncrements = a.du;
+    Trial start;
+    evaluateTrial(setup_, particles_, geometry_, Eigen::VectorXd::Zero(components), false, a.snapBack, start, &prescribedIncrements);
+    if (start.failed != SIZE_MAX) return a.failInMaterial(0, start, setup_, particles_);
+    a.startForce = start.internalForce;
+    Eigen::VectorXd rhs(n);
+    for (int u = 0; u < n; ++u) {
+      const auto c = dofs.component[static_cast<std::size_t>(u)];
+      rhs[u] = a.external[c] - start.internalForce[c] - start.tangentTimesDirection[c];
+    }
+    if (luPattern_ != geometry_.patternBuilds || a.reuseRatio <= 0.0) {
+      assembleTangent(setup_, particles_, geometry_, start);
+      if (!factorize(start.tangent, a)) return a.fail(0, 0.0, NewtonFailure::Singular, "the tangent at the step's start is singular");
+    }
+    const Eigen::VectorXd delta = solve(rhs, a);
+    if (!delta.allFinite()) return a.fail(0, 0.0, NewtonFailure::Singular, "the tangent at the step's start is singular");
+    for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] = delta[u];
+  }
+  evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, a.trial);
+  // A predictor far past the onset limit is not worth converging: the piece is cut at once.
+  if (a.snapBack != SnapBackPolicy::Release && a.trial.failed == SIZE_MAX && a.trial.onsetOvershoot > 1.5 * settings_.onsetOvershoot)
+    return a.fail(0, 0.0, NewtonFailure::OnsetOvershoot, "the predictor carried a point past its onset by " + std::to_string(a.trial.onsetOvershoot) + " of its strength");
+  bool refactor = a.reuseRatio <= 0.0;
+  NewtonHistory history;  // a stalled attempt keeps its best iterate
+  CycleGuard cycle;       // mpm/implicit/newton_cycle.hpp
+  for (int it = 0;; ++it) {
+    if (a.trial.failed != SIZE_MAX) return a.failInMaterial(it, a.trial, setup_, particles_);
+    double relative = 0.0;
+    const Eigen::VectorXd r = residualOf(a.trial, relative);
+    a.report.totalIterations++;
+    if (relative <= settings_.tolerance) {
+      a.report.iterations = it;
+      a.report.residual = relative;
+      return true;
+    }
+    history.observe(relative, true, a.du);
+    cycle.observe(a.trial.dissipation, relative);
+    if (history.ends(it, a.maxIterations, a.reuseRatio, a.lastResort)) {
+      a.stalled = true;  // a.du and a.trial hold the best iterate
+      a.report.iterations = it;
+      if (history.hasBetterThan(relative)) {
+        a.du = history.bestDu;
+        evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, a.trial, nullptr, cycle.secantFlags());
+        if (a.trial.failed != SIZE_MAX) return a.failInMaterial(it, a.trial, setup_, particles_);
+        relative = history.bestRelative;
+      }
+      return a.fail(it, relative, NewtonFailure::NotConverged, "Newton did not converge");
+    }
+    const bool fresh = refactor || luPattern_ != geometry_.patternBuilds;
+    cycle.solvedWithFreshTangent(fresh);
+    if (fresh) {
+      assembleTangent(setup_, particles_, geometry_, a.trial);
+      if (!factorize(a.trial.tangent, a)) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
+    }
+    const Eigen::VectorXd delta = solve(r, a);
+    if (!delta.allFinite()) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
+    // Backtracking line search on |r|: the full step, then halves, the best kept.
+    Eigen::VectorXd full = Eigen::VectorXd::Zero(a.du.size());
+    for (int u = 0; u < n; ++u) full[dofs.component[static_cast<std::size_t>(u)]] = delta[u];
+    Trial best;
+    double bestNorm = INFINITY, alpha = 1.0;
+    Eigen::VectorXd bestDu;
+    for (int tries = 0; tries < 6; ++tries, alpha *= 0.5) {
+      Trial t;
+      const Eigen::VectorXd du = a.du + alpha * full;
+      evaluateTrial(setup_, particles_, geometry_, du, false, a.snapBack, t, nullptr, cycle.secantFlags());
+      if (t.failed != SIZE_MAX) continue;
+      double rel = 0.0;
+      const double norm = residualOf(t, rel).norm();
+      if (norm < bestNorm) bestNorm = norm, best = std::move(t), bestDu = du;
+      if (norm <= (1.0 - 1e-4 * alpha) * r.norm()) break;
+    }
+    if (!std::isfinite(bestNorm)) {  // every length failed in the material: report the full step's failure
+      evaluateTrial(setup_, particles_, geometry_, a.du + full, false, a.snapBack, a.trial, nullptr, cycle.secantFlags());
+      continue;
+    }
+    // A stale factorisation that no longer contracts the residual well enough is renewed.
+    refactor = a.reuseRatio <= 0.0 || bestNorm > a.reuseRatio * r.norm();
+    a.du = std::move(bestDu);
+    a.trial = std::move(best);
+  }
+}
+
+bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau, Attempt& a) {
+  if (!prepare(0.0, &control, a)) return false;
+  const auto components = a.du.size();
+  const DofMap& dofs = geometry_.dofs;
+  const int n = dofs.unknowns();
+  // The control's coefficients per node component.
+  Eigen::VectorXd c = Eigen::VectorXd::Zero(components);
+  for (const auto& [k, coefficient] : control.terms) c[k] += coefficient;
+  const double cPrescribed = c.dot(a.direction);  // d tau per unit load factor through the driven components
+  double dLambda = 0.0, previous = INFINITY;
+  bool refactor = a.reuseRatio <= 0.0;
+  Eigen::VectorXd y, kuAtY;  // y = -K_ff^-1 (K u^)_f, and the K u^ it was solved for
+  int factorizationsAtY = -1;
+  // Points that make Newton cycle take their secant tangent (mpm/implicit/newton_cycle.hpp); a stalled
+  // attempt keeps its best iterate that meets the control.
+  CycleGuard cycle;
+  NewtonHistory history;
+  // The start: the last step's increments scaled to this step's opening (docs/implicit.md, "The
+  // extrapolated start"): it meets the control exactly, and Newton begins near the solution of a
+  // smooth path. The internal forces at du = 0 (for the work) are then evaluated apart.
+  bool extrapolated = false;
+  if (settings_.extrapolate && lastOpening_ != 0.0 && lastIncrement_.size() == components) {
+    Trial zero;
+    evaluateTrial(setup_, particles_, geometry_, Eigen::VectorXd::Zero(components), false, a.snapBack, zero);
+    if (zero.failed != SIZE_MAX) return a.failInMaterial(0, zero, setup_, particles_);
+    a.startForce = zero.internalForce;
+    const double scale = dTau / lastOpening_;
+    for (int u = 0; u < n; ++u) {
+      const auto k = dofs.component[static_cast<std::size_t>(u)];
+      a.du[k] = scale * lastIncrement_[k];
+    }
+    dLambda = scale * lastLoadFactorIncrement_;
+    extrapolated = true;
+  }
+  // Newton on (du_f, d lambda) with the bordered system, from that start or from du = 0 (then the
+  // first iteration is the predictor): K_ff d_f + (K u^)_f d_lambda = r_f and c . (d_f + d_lambda u^) = d tau - c . du,
+  // solved with one factorisation: d_f = a + d_lambda b, a = K_ff^-1 r_f, b = -K_ff^-1 (K u^)_f.
+  // K_ff is refactorised as in attempt().
+  for (int it = 0;; ++it) {
+    Trial& t = a.trial;
+    const Eigen::VectorXd du = a.du + dLambda * a.direction;
+    evaluateTrial(setup_, particles_, geometry_, du, false, a.snapBack, t, &a.direction, cycle.secantFlags());
+    a.report.totalIterations++;
+    if (t.failed != SIZE_MAX) return a.failInMaterial(it, t, setup_, particles_);
+    if (it == 0 && !extrapolated) a.startForce = t.internalForce;  // du = 0
+    Eigen::VectorXd r(n), ku(n);
+    for (int u = 0; u < n; ++u) {
+      const auto k = dofs.component[static_cast<std::size_t>(u)];
+      r[u] = a.external[k] - t.internalForce[k];
+      ku[u] = t.tangentTimesDirection[k];
+    }
+    const double reference = std::max({a.external.norm(), t.internalForce.norm(), 1e-300});
+    double relative = r.norm() / reference;
+    const double g = dTau - c.dot(du);
+    if ((it > 0 || extrapolated) && relative <= settings_.tolerance && std::abs(g) <= 1e-10 * std::abs(dTau)) {
+      a.report.iterations = it;
+      a.report.residual = relative;
+      a.du = du;
+      a.dLambda = dLambda;
+      a.dTau = dTau;
+      return true;
+    }
+    history.observe(relative, std::abs(g) <= 1e-10 * std::abs(dTau), a.du, dLambda);
+    cycle.observe(t.dissipation, relative);
+    if (history.ends(it, a.maxIterations, a.reuseRatio, a.lastResort)) {
+      a.stalled = true;  // the best iterate, as a converged one is kept
+      a.report.iterations = it;
+      if (history.hasBetterThan(relative)) {
+        dLambda = history.bestDLambda;
+        a.du = history.bestDu + dLambda * a.direction;
+        relative = history.bestRelative;
+        evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, t, &a.direction, cycle.secantFlags());
+        if (t.failed != SIZE_MAX) return a.failInMaterial(it, t, setup_, particles_);
+      } else {
+        a.du = du;
+      }
+      a.dLambda = dLambda;
+      a.dTau = dTau;
+      return a.fail(it, relative, NewtonFailure::NotConverged, "Newton did not converge");
+    }
+    if (it > 0 && r.norm() > a.reuseRatio * previous) refactor = true;
+    previous = r.norm();
+    const bool fresh = refactor || luPattern_ != geometry_.patternBuilds;
+    cycle.solvedWithFreshTangent(fresh);
+    if (fresh) {
+      assembleTangent(setup_, particles_, geometry_, t);
+      if (!factorize(t.tangent, a)) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
+      refactor = a.reuseRatio <= 0.0;
+    }
+    // y depends on the factorisation and on K u^ only: solved again when either changed (K u^
+    // stays put while the driven conditions' points stay elastic).
+    const Eigen::VectorXd x = solve(r, a);
+    if (a.report.factorizations != factorizationsAtY || y.size() != n || ku != kuAtY)
+      y = -solve(ku, a), kuAtY = ku, factorizationsAtY = a.report.factorizations;
+    if (!x.allFinite() || !y.allFinite()) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
+    double cx = 0.0, cy = 0.0;
+    for (int u = 0; u < n; ++u) {
+      const double ck = c[dofs.component[static_cast<std::size_t>(u)]];
+      cx += ck * x[u], cy += ck * y[u];
+    }
+    const double denominator = cy + cPrescribed;
+    if (!(std::abs(denominator) > 0.0))
+      return a.fail(it, relative, NewtonFailure::ControlBlind, "the control does not see the driven conditions (c . du does not change with the load factor)");
+    const double deltaLambda = (g - cx) / denominator;
+    for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] += x[u] + deltaLambda * y[u];
+    dLambda += deltaLambda;
+  }
+}
+
+void ImplicitSolver::commit(const Attempt& a, double dt) {
+  const Scene& scene = setup_.scene;
+  const Trial& t = a.trial;
+  Particles& p = particles_;
+  const int nx = scene.grid.nodesX(), support = supportSize(scene.solver.shapeFunction);
+  double internal = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Stencil& s = geometry_.stencils[i];
+    Vec2 move = Vec2::Zero();
+    for (int j = 0; j < support; ++j)
+      for (int k = 0; k < support; ++k) move += s.wx[k] * s.wy[j] * a.du.segment<2>(2 * static_cast<Eigen::Index>(s.base + j * nx + k));
+    p.position[i] += move;
+    internal += 0.5 * p.volume[i] * (p.stress[i] + t.stress[i]).dot(t.strain[i] - p.strain[i]);
+    p.strain[i] = t.strain[i];
+    p.stress[i] = t.stress[i];
+    if (t.band[i]) {
+      if (p.band[i] < 0) {
+        p.band[i] = static_cast<std::int32_t>(p.bands.size());
+        p.bands.push_back(*t.band[i]);
+      } else {
+        p.bands[static_cast<std::size_t>(p.band[i])] = *t.band[i];
+      }
+    }
+    if (t.secondBand[i] && !p.secondBand.empty()) {
+      if (p.secondBand[i] < 0) {
+        p.secondBand[i] = static_cast<std::int32_t>(p.secondBands.size());
+        p.secondBands.push_back(*t.secondBand[i]);
+      } else {
+        p.secondBands[static_cast<std::size_t>(p.secondBand[i])] = *t.secondBand[i];
+      }
+    }
+    totals_.dissipated += p.volume[i] * t.dissipation[i];
+  }
+  if (!t.integrity.empty()) p.integrity = t.integrity;
+  // Reactions: what the constraints add to the loads to balance the internal forces.
+  for (std::size_t c = 0; c < conditions_.size(); ++c) {
+    ConditionState& state = conditions_[c];
+    const NodeCondition& cond = scene.conditions[c];
+    state.reaction.setZero();
+    for (const std::int32_t node : state.nodes)
+      for (int d = 0; d < 2; ++d)
+        if (a.prescribed[2 * static_cast<std::size_t>(node) + static_cast<std::size_t>(d)])
+          state.reaction[d] += t.internalForce[2 * node + d] - a.external[2 * node + d];
+    for (int d = 0; d < 2; ++d) {
+      const ComponentCondition& k = cond.component[static_cast<std::size_t>(d)];
+      if (cond.field) continue;
+      if (!state.nodes.empty() && a.direction.size() > 0 && a.direction[2 * state.nodes[0] + d] != 0.0) {
+        state.displacement[d] += a.dLambda * a.direction[2 * state.nodes[0] + d];  // driven by the load factor
+        continue;
+      }
+      if (k.kind == Prescribed::Displacement) state.displacement[d] = k.history(time_ + dt);
+      if (k.kind == Prescribed::Velocity) state.displacement[d] += dt * k.history(time_ + dt);
+    }
+  }
+  // The works of the step, trapezoidal (docs/implicit.md, "Energies"): the external work of the
+  // forces the loads and the constraints apply (at a prescribed component the internal force, at a
+  // free one the load), and the internal work sum_p V (sigma_n + sigma_n+1)/2 : d eps_p.
+  // They differ by the work of the residual: the check of equilibrium in energy.
+  double external = 0.0;
+  for (Eigen::Index k = 0; k < a.du.size(); ++k) {
+    if (a.du[k] == 0.0) continue;
+    const bool held = geometry_.dofs.unknownOf[static_cast<std::size_t>(k)] == DofMap::kPrescribed;
+    external += 0.5 * (held ? a.startForce[k] + t.internalForce[k] : a.externalStart[k] + a.external[k]) * a.du[k];
+  }
+  totals_.externalWork += external;
+  internalWork_ += internal;
+  totals_.released += t.released;
+  if (a.dTau != 0.0) lastIncrement_ = a.du, lastLoadFactorIncrement_ = a.dLambda, lastOpening_ = a.dTau;
+  lambda_ += a.dLambda;
+  time_ += dt;
+  ++steps_;
+}
+
+ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, double largest, double remaining) {
+  ImplicitStepReport total;
+  double& nextPiece = control ? nextOpening_ : nextPiece_;  // of pseudo-time, or of opening (mm)
+  const double smallest = std::abs(largest) * std::ldexp(1.0, -settings_.maxHalvings);  // of the adaptive piece
+  double piece = nextPiece > 0.0 ? std::clamp(nextPiece, smallest, std::abs(largest)) : std::abs(largest);
+  piece = std::copysign(std::min(piece, std::abs(remaining)), largest);
+  // The last piece before `remaining` ends takes what is left when that is at most 1.5 pieces.
+  if (std::abs(remaining) <= 1.5 * std::abs(piece)) piece = remaining;
+  // Attempts: the piece with the kept factorisation, then (if Newton did not converge) the same
+  // piece factorising at every iteration, then halves of it, the last with 4 times the iterations.
+  // A material snap-back gets one halving; if it persists, the scene's snap_back decides: release
+  // lets the band fail onto its stable branch (as explicit runs do), stop ends the run there.
+  const bool release = setup_.scene.solver.snapBack == SnapBackPolicy::Release;
+  bool retried = false;
+  int snapBackCuts = 0;  // halvings because a point snapped back: after the first, it persists
+  for (int cuts = 0;; ++cuts) {
+    Attempt a;
+    const bool finest = cuts >= settings_.maxHalvings;
+    a.reuseRatio = cuts > 0 || retried ? 0.0 : settings_.reuseRatio;
+    a.maxIterations = finest ? 4 * settings_.maxIterations : settings_.maxIterations;
+    a.lastResort = finest;
+    a.snapBack = release && (finest || snapBackCuts > 0) ? SnapBackPolicy::Release : SnapBackPolicy::Stop;
+    bool ok = control ? attemptIndirect(*control, piece, a) : attempt(piece, a);
+    // A piece whose Newton (proper) stalls below the acceptance tolerance is kept: its residual
+    // is carried into the next step's equilibrium (docs/implicit.md, "Load steps").
+    bool relaxed = false;
+    if (!ok && a.stalled && a.reuseRatio == 0.0 && a.failedResidual <= settings_.acceptTolerance) ok = relaxed = true;
+    // A piece that carries a point far past its onset is cut (docs/implicit.md, "Load steps").
+    if (ok && !finest && a.trial.onsetOvershoot > settings_.onsetOvershoot)
+      ok = a.fail(a.report.iterations, a.report.residual, NewtonFailure::OnsetOvershoot,
+                  "a point passed its onset by " + std::to_string(a.trial.onsetOvershoot) + " of its strength");
+    total.totalIterations += a.report.totalIterations;
+    total.factorizations += a.report.factorizations;
+    total.linearSolveSeconds += a.report.linearSolveSeconds;
+    if (ok) {
+      commit(a, control ? 0.0 : piece);
+      checkBalance();
+      total.size = piece;
+      total.cuts = cuts;
+      total.iterations = a.report.iterations;
+      total.residual = relaxed ? a.failedResidual : a.report.residual;
+      total.relaxed = relaxed ? 1 : 0;
+      total.released = a.trial.released;
+      total.onsetOvershoot = a.trial.onsetOvershoot;
+      // The next piece: longer after an easy step, shorter after a hard one.
+      double grow = a.report.iterations <= settings_.easyIterations ? 2.0
+                    : a.report.iterations >= settings_.hardIterations ? 0.5 : 1.0;
+      if (a.trial.onsetOvershoot > 0.0)  // aim at 0.6 of the overshoot limit
+        grow = std::min(grow, std::max(0.5, 0.6 * settings_.onsetOvershoot / a.trial.onsetOvershoot));
+      nextPiece = std::abs(piece) * grow;
+      return total;
+    }
+    if (!finest && !retried && cuts == 0 && a.reuseRatio > 0.0 && a.reason == NewtonFailure::NotConverged) {
+      retried = true;  // the same piece with Newton proper
+      --cuts;
+      continue;
+    }
+    if (a.failedStatus == UpdateStatus::SnapBack) ++snapBackCuts;
+    const bool persistingSnapBack = !release && snapBackCuts > 1 && a.failedStatus == UpdateStatus::SnapBack;
+    if (!finest && !persistingSnapBack) {
+      // The overshoot grows about linearly with the piece: cut to where it would meet the limit.
+      const double overshootCut = a.trial.onsetOvershoot > settings_.onsetOvershoot && a.reason == NewtonFailure::OnsetOvershoot
+                                      ? std::max(0.1, 0.8 * settings_.onsetOvershoot / a.trial.onsetOvershoot)
+                                      : 0.5;
+      piece *= std::min(0.5, overshootCut);
+      continue;
+    }
+    std::ostringstream msg;
+    msg << "implicit step " << steps_ + 1 << " (t = " << time_ << " s, load factor " << lambda_ << ", a piece of "
+        << piece << " after " << cuts << " halvings): "
+        << (persistingSnapBack ? "a material snap-back persists after a halving: " : "") << a.why << " at Newton iteration " << a.failedIteration
+        << ", relative residual " << a.failedResidual;
+    Vec2 where = Vec2::Zero();
+    if (a.failedParticle != SIZE_MAX) {
+      where = particles_.position[a.failedParticle];
+      msg << "; particle " << a.failedParticle << " at (" << where[0] << ", " << where[1] << ") mm";
+    }
+    // Under displacement control a cracked structure whose Newton fails on the smallest piece has
+    // most likely passed a limit point: past a structural snap-back no state of the structure
+    // has the prescribed displacement on the softening branch (docs/implicit.md).
+    const bool cracked = std::any_of(particles_.band.begin(), particles_.band.end(), [](std::int32_t b) { return b >= 0; }) ||
+                         std::any_of(a.trial.band.begin(), a.trial.band.end(), [](const auto& b) { return b.has_value(); });
+    if (!control && cracked && (a.reason == NewtonFailure::NotConverged || a.reason == NewtonFailure::Singular))
+      msg << ". The structure has most likely passed a limit point (a structural snap-back: past its peak the load and "
+             "the displacement fall together), which displacement control cannot follow; indirect control "
+             "(solver: {control: {indirect: ...}}, docs/implicit.md) traces it";
+    throw SimulationError(a.reason == NewtonFailure::LeftGrid ? FailureKind::LeftGrid : FailureKind::MaterialFailure,
+                          steps_ + 1, a.failedParticle == SIZE_MAX ? 0 : a.failedParticle, where, msg.str(),
+                          a.failedStatus, a.failedResidual);
+  }
+}
+
+void ImplicitSolver::checkBalance() const {
+  const double scale = std::max({std::abs(totals_.externalWork), std::abs(internalWork_), 1e-9});
+  const double gap = std::abs(totals_.externalWork - internalWork_);
+  if (gap <= kBalanceTolerance * scale) return;
+  std::ostringstream msg;
+  msg << "implicit step " << steps_ << " (t = " << time_ << " s, load factor " << lambda_ << "): the external work "
+      << totals_.externalWork << " N mm and the internal work " << internalWork_ << " N mm differ by " << gap / scale
+      << " of the work (allowed " << kBalanceTolerance << "): the steps are not in equilibrium";
+  throw SimulationError(FailureKind::MaterialFailure, steps_, 0, Vec2::Zero(), msg.str(), UpdateStatus::Converged, gap / scale);
+}
+
+ImplicitStepReport ImplicitSolver::advance(double largest, double remaining) { return advance(nullptr, largest, remaining); }
+
+ImplicitStepReport ImplicitSolver::advance(const IndirectControl& control, double largest, double remaining) {
+  return advance(&control, largest, remaining);
+}
+
+// A whole step of `size` in adaptive pieces: the reports summed.
+ImplicitStepReport ImplicitSolver::stepInPieces(const IndirectControl* control, double size) {
+  ImplicitStepReport total;
+  double done = 0.0;
+  while (std::abs(done) < std::abs(size) * (1.0 - 1e-12)) {
+    const ImplicitStepReport r = advance(control, size, size - done);
+    done += r.size;
+    total.size += r.size;
+    total.iterations = std::max(total.iterations, r.iterations);
+    total.totalIterations += r.totalIterations;
+    total.factorizations += r.factorizations;
+    total.cuts += r.cuts;
+    total.residual = std::max(total.residual, r.residual);
+    total.released += r.released;
+    total.relaxed += r.relaxed;
+    total.linearSolveSeconds += r.linearSolveSeconds;
+    total.onsetOvershoot = std::max(total.onsetOvershoot, r.onsetOvershoot);
+  }
+  return total;
+}
+
+ImplicitStepReport ImplicitSolver::step(double dt) { return stepInPieces(nullptr, dt); }
+
+ImplicitStepReport ImplicitSolver::step(const IndirectControl& control, double dTau) { return stepInPieces(&control, dTau); }
+
+}  // namespace ecm::mpm

@@ -1,0 +1,144 @@
+#pragma once
+// Implicit quasi-static MPM (docs/implicit.md): the scene's time is a pseudo-time that sets the
+// loads and the prescribed displacements; each load step solves equilibrium on the grid by
+// Newton's method on the nodal displacement increments with the assembled consistent tangent
+// (mpm/implicit/implicit_system.hpp), a backtracking line search and, when it does not converge, the step
+// cut in half. The particles move and their states are committed at the end of a converged step.
+//
+// Prescribed components over a step [t, t + dt]: Fixed 0; Displacement u(t + dt) - u(t);
+// Velocity dt v(t + dt) (a rate in pseudo-time); an affine field dt scale(t + dt) G (x - o).
+
+#include <vector>
+
+#include "mpm/implicit/implicit_system.hpp"
+#include "mpm/implicit/linear_solver.hpp"
+
+namespace ecm::mpm {
+
+// Indirect displacement control (docs/implicit.md): the driven conditions' prescribed components
+// move by lambda times `reference` (mm per unit load factor), lambda an unknown of each step, and
+// the step is set by the growth of a combination of node displacements instead:
+// tau = sum_k c_k u_k over node components k = 2 n + d (an opening across a crack, a crack mouth).
+// The grid is reset every step, so the control is on the step's increments: d tau = sum c_k du_k.
+struct IndirectControl {
+  std::vector<std::size_t> driven;                     // indices of scene conditions
+  Vec2 reference = Vec2(0.0, 1.0);                     // mm per unit load factor, on their non-fixed components
+  std::vector<std::pair<std::int32_t, double>> terms;  // (node component, coefficient)
+};
+
+struct ImplicitStepReport {
+  double size = 0.0;        // the pseudo-time (or, under indirect control, the d tau) advanced
+  double onsetOvershoot = 0.0;  // the most a point passed its onset by in the step (of its strength)
+  int iterations = 0;       // Newton iterations of the converged attempt (all attempts in `total`)
+  int totalIterations = 0;
+  int cuts = 0;             // halvings needed
+  int factorizations = 0;   // of the tangent, in all attempts
+  double residual = 0.0;    // relative, at convergence
+  long released = 0;        // snap-backs released at the material level in the step
+  int relaxed = 0;          // 1: kept with a residual between tolerance and acceptTolerance
+  double linearSolveSeconds = 0.0;
+};
+
+class ImplicitSolver {
+ public:
+  // The solver's settings are the scene's `solver.implicit` (their defaults where it has none).
+  explicit ImplicitSolver(Scene scene, int threads = 1);
+
+  // One load step from time() to time() + dt, in halves when needed. Throws SimulationError
+  // (with the step, the iteration, the residual and the worst particle) when even the smallest
+  // piece fails; the committed state is then the last converged one.
+  ImplicitStepReport step(double dt);
+  // One step of indirect control: the combination grows by dTau (mm), lambda follows; halved as
+  // step() halves. The pseudo-time does not move.
+  ImplicitStepReport step(const IndirectControl& control, double dTau);
+  // One converged load step of at most `largest` and `remaining` (its size in the report): the
+  // adaptive step of a run. The piece follows the Newton iterations and the onset overshoot of the
+  // last one, not below largest / 2^maxHalvings. A piece whose Newton does not converge is tried
+  // again factorising at every iteration, then halved up to maxHalvings times; the last try has 4
+  // times the iterations. A material snap-back gets one halving; if it persists, the scene's
+  // snap_back decides: release (the band fails onto its stable branch, counted) or stop (a
+  // SimulationError of kind SnapBack naming the point). Throws SimulationError as step() does.
+  ImplicitStepReport advance(double largest, double remaining);
+  ImplicitStepReport advance(const IndirectControl& control, double largest, double remaining);
+  double loadFactor() const { return lambda_; }
+  // The tangent over the unknowns of a step of dt from here, at du = 0 (for benchmarks of the
+  // linear solvers); empty if a particle left the grid.
+  Eigen::SparseMatrix<double> tangentAtStart(double dt);
+
+  // What a checkpoint stores besides the particles (mpm/implicit/implicit_checkpoint.hpp): with it and the
+  // particles, a solver of the same scene continues bitwise as the one that was saved.
+  struct SavedState {
+    double time = 0.0, loadFactor = 0.0, nextPiece = 0.0, nextOpening = 0.0;
+    long steps = 0;
+    double externalWork = 0.0, internalWork = 0.0, dissipated = 0.0;
+    long released = 0;
+    std::vector<Vec2> reactions, conditionDisplacements;  // per condition
+    // The last step's geometry (its stencils' first nodes, its prescribed components) and the
+    // tangent factorised on it (empty when the factorisation is of another pattern, or none).
+    std::vector<std::int32_t> stencilBases;
+    std::vector<std::uint8_t> prescribed;
+    Eigen::SparseMatrix<double> factored;
+    // Indirect control: the last step's increments (empty, 0: none).
+    Eigen::VectorXd lastIncrement;
+    double lastLoadFactorIncrement = 0.0, lastOpening = 0.0;
+  };
+  SavedState saved() const;
+  // Throws std::invalid_argument when the state does not fit this solver's scene.
+  void restore(const SavedState& s);
+  Particles& editParticles() { return particles_; }
+
+  double time() const { return time_; }
+  long steps() const { return steps_; }
+  const Particles& particles() const { return particles_; }
+  const std::vector<ConditionState>& conditions() const { return conditions_; }
+  const StepSetup& setup() const { return setup_; }
+  Energies energies() const;
+  // The internal work (N mm): sum_p V int sigma : d eps, trapezoidal per step. External work minus
+  // it is the work of the residual forces; internal work minus the strain energy is the work-based
+  // dissipation, which on shear paths differs from the model's f int Y dD (docs/implicit.md).
+  double internalWork() const { return internalWork_; }
+  // The particles' displacements from their seeds (mm).
+  Vec2 displacement(std::size_t i) const { return particles_.displacement(i); }
+
+ private:
+  struct Attempt;
+  // The step's prescribed components, geometry and loads (false: a particle left the grid).
+  bool prepare(double dt, const IndirectControl* control, Attempt& a);
+  bool attempt(double dt, Attempt& a);  // Newton over [time_, time_ + dt]; true when converged
+  bool attemptIndirect(const IndirectControl& control, double dTau, Attempt& a);
+  ImplicitStepReport advance(const IndirectControl* control, double largest, double remaining);
+  ImplicitStepReport stepInPieces(const IndirectControl* control, double size);
+  void commit(const Attempt& a, double dt);
+  // Throws SimulationError when the external and internal works part by more than
+  // kBalanceTolerance of the work (checked after every step).
+  void checkBalance() const;
+  static constexpr double kBalanceTolerance = 1e-2;
+
+  StepSetup setup_;
+  ImplicitSettings settings_;
+  Particles particles_;
+  std::vector<ConditionState> conditions_;
+  std::vector<LoadState> loads_;
+  RunTotals totals_;
+  // Factorises K over the current unknowns into lu_ (false: singular), timing it in `a`.
+  bool factorize(const Eigen::SparseMatrix<double>& k, Attempt& a);
+  Eigen::VectorXd solve(const Eigen::VectorXd& b, Attempt& a);
+
+  LinearSolver lu_;
+  long luPattern_ = -1;    // geometry_.patternBuilds of the factorised tangent (-1: none)
+  Eigen::SparseMatrix<double> factored_;  // that tangent (a checkpoint stores it)
+  StepGeometry geometry_;  // of the committed state after `geometryStep_` steps (-1: none)
+  long geometryStep_ = -1;
+  double internalWork_ = 0.0;  // sum over steps and particles of V (sigma_n + sigma_n+1)/2 : d eps (N mm)
+  double time_ = 0.0;
+  double lambda_ = 0.0;  // the load factor of indirect control
+  double nextPiece_ = 0.0;    // the adaptive step of pseudo-time (0: the largest)
+  double nextOpening_ = 0.0;  // the adaptive step of indirect control's opening (mm; 0: the largest)
+  // Indirect control: the last step's increments per node component, of the load factor and of
+  // the opening (0: none yet); the next step's Newton starts from them, scaled.
+  Eigen::VectorXd lastIncrement_;
+  double lastLoadFactorIncrement_ = 0.0, lastOpening_ = 0.0;
+  long steps_ = 0;
+};
+
+}  // namespace ecm::mpm

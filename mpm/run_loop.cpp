@@ -1,0 +1,287 @@
+// The one run loop of both solvers (mpm/run_loop.hpp).
+#include "mpm/run_loop.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <sstream>
+#include <system_error>
+
+#include "io/csv_writer.hpp"
+#include "io/json_summary.hpp"
+#include "io/output_dir.hpp"
+#include "io/output_error.hpp"
+#include "io/progress.hpp"
+#include "mpm/core/errors.hpp"
+#include "mpm/output/run_files.hpp"
+#include "mpm/output/vtu_writer.hpp"
+#include "mpm/scene/stop_when.hpp"
+
+namespace ecm::mpm {
+
+namespace {
+
+using WallClock = std::chrono::steady_clock;
+double secondsSince(WallClock::time_point t) { return std::chrono::duration<double>(WallClock::now() - t).count(); }
+
+// One run, its parts each a member function of its own:
+//   loop        a step, the peak, the particle snapshots, a history row when one is due (with
+//               the stop_when watch and a VTU snapshot when one is due), a checkpoint when due
+//   stop        the end, the scene's stop_when (at a row), a stop request (signal, --max-steps,
+//               the row callback)
+//   output      history.csv, VTU snapshots, particle snapshots, the final particles; a file that
+//               cannot be written ends the output, not the account of it
+//   checkpoint  when one is due (every N steps, M minutes, on a stop request) and the loop's book
+// Then the summary and the plots.
+class RunLoop {
+ public:
+  RunLoop(const Scene& scene, const RunOptions& options, Stepper& stepper)
+      : scene_(scene), options_(options), stepper_(stepper), start_(WallClock::now()),
+        checkpointFile_(checkpointPath(options.outputDir)), lastCheckpoint_(start_) {
+    result_.particles = stepper.particles().size();
+    if (options.restart) readRestart();  // before anything in the folder is touched
+    io::prepareOutputDir(options.outputDir);
+    openOutputs();
+    if (scene.stopWhen) {
+      watched_ = findCondition(scene.conditions, scene.stopWhen->condition).value();  // validated
+      watchedComponent_ = drivenComponent(scene.conditions.at(watched_));
+    }
+    for (const auto& c : scene.conditions) anyDriven_ = anyDriven_ || isDriven(c);
+  }
+
+  RunResult execute() {
+    try {
+      if (!options_.restart) {
+        watchStop();
+        output();
+      }
+      stepLoop();
+      result_.completed = !result_.stopped;
+    } catch (const SimulationError& e) {
+      result_.error = e.what();
+      try {
+        if (stepper_.failureKeepsConsistentState())
+          checkpoint();  // the last consistent state, to continue from or look at
+        else
+          output(true);  // the state at the failure (history row and snapshot), for a look at what went wrong
+      } catch (const io::OutputError& o) {
+        outputFailure(o);
+      }
+    } catch (const io::OutputError& e) {
+      // A file could not be written (full disk?): what is on disk stays readable (history.csv ends
+      // with its last whole row, the other files are replaced atomically). Nothing more is written
+      // but, if it can be, the summary.
+      result_.error = std::string(e.what()) + " (at step " + std::to_string(stepper_.steps()) + ")";
+      outputFailed_ = true;
+    }
+    if (progress_) progress_->finish();
+    closeOutputs();
+    result_.steps = stepper_.steps();
+    result_.wallTime = secondsSince(start_);
+    std::error_code ec;
+    if (result_.completed) std::filesystem::remove(checkpointFile_, ec);  // it describes an unfinished run
+    if (std::filesystem::exists(checkpointFile_, ec)) result_.checkpoint = checkpointFile_;
+    try {
+      io::writeJsonSummary(summary(), options_.outputDir / "summary.json");
+    } catch (const io::OutputError& o) {  // the old summary, if any, stays whole
+      outputFailure(o);
+    }
+    if (!outputFailed_ && options_.plot && !result_.stopped) {
+      plotLoadDisplacement(scene_, options_.outputDir);
+      plotDamage(scene_, stepper_.particles().size(), options_.outputDir);
+    }
+    return result_;
+  }
+
+ private:
+  // --- the loop ---
+  void stepLoop() {
+    while (!finished()) {
+      if (stopRequested()) {
+        checkpoint();
+        result_.stopped = true;
+        break;
+      }
+      stepper_.advance();
+      trackPeak();
+      particleSnapshots();
+      if (stepper_.reachedEnd() || stepper_.rowDue()) {
+        watchStop();
+        output();
+        if (options_.onRow && !options_.onRow(stepper_.time(), stepper_.steps())) rowObserverAsksStop_ = true;
+        stepper_.rowWritten();
+      }
+      if (progress_) progress_->update(stepper_.progress());
+      if (!finished() && checkpointDue()) checkpoint();
+    }
+  }
+
+  // --- stop ---
+  bool finished() const { return result_.endedByStopWhen || stepper_.reachedEnd(); }
+  bool stopRequested() const {
+    return rowObserverAsksStop_ || (options_.stop && options_.stop->load(std::memory_order_relaxed)) ||
+           (options_.maxSteps > 0 && stepper_.steps() >= options_.maxSteps);
+  }
+  // The scene's stop_when (mpm/scene/stop_when.hpp), at a history row.
+  void watchStop() {
+    if (!scene_.stopWhen) return;
+    const double load = stepper_.conditions()[watched_].reaction[watchedComponent_];
+    if (watch_.observe(*scene_.stopWhen, stepper_.progress(), load)) {
+      result_.endedByStopWhen = true;
+      result_.stopLoad = load;
+    }
+  }
+  // The peak of the driven conditions' reactions (all conditions' if none is driven) and loads.
+  void trackPeak() {
+    for (std::size_t i = 0; i < scene_.conditions.size(); ++i)
+      if (isDriven(scene_.conditions[i]) || !anyDriven_)
+        result_.peakLoad = std::max(result_.peakLoad, stepper_.conditions()[i].reaction.norm());
+    for (const Vec2& f : stepper_.appliedLoads()) result_.peakLoad = std::max(result_.peakLoad, f.norm());
+  }
+
+  // --- output ---
+  void openOutputs() {
+    const std::filesystem::path& dir = options_.outputDir;
+    history_ = openHistory(dir, stepper_.historyColumns(), checkpointFile_, options_.restart ? &stepper_.book().history : nullptr);
+    if (options_.snapshots) {
+      snapshots_ = std::make_unique<VtuSeries>(dir);
+      if (options_.restart) snapshots_->resume(stepper_.book().snapshotTimes);
+    }
+    if (options_.progress) {
+      io::Progress::Options o;
+      o.label = stepper_.progressLabel();
+      progress_ = std::make_unique<io::Progress>(stepper_.progressEnd(), o);
+    }
+  }
+  // A history row, and a VTU snapshot when the stepper says so, at the end and on `force`. The
+  // row count survives a restart, so the series goes on in step.
+  void output(bool forceSnapshot = false) {
+    const std::size_t row = history_->rows();
+    history_->row(stepper_.historyRow());
+    history_->flush();
+    if (snapshots_ && (forceSnapshot || stepper_.snapshotDue(row) || finished())) snapshot();
+  }
+  void snapshot() {
+    snapshots_->add(stepper_.particles(), stepper_.progress());
+    stepper_.snapshotTaken();
+  }
+  // particles_t<time>.csv at the scene's times, the first step at or past each.
+  void particleSnapshots() {
+    const auto& times = scene_.particleSnapshots;
+    for (; nextParticleSnapshot_ < times.size() &&
+           stepper_.progress() >= times[nextParticleSnapshot_] - stepper_.progressTolerance();
+         ++nextParticleSnapshot_) {
+      std::ostringstream name;
+      name << "particles_t" << times[nextParticleSnapshot_] << ".csv";
+      writeParticles(stepper_.particles(), options_.outputDir / name.str());
+    }
+  }
+  // What goes wrong from here on is added to the result; what was written stays readable.
+  void outputFailure(const io::OutputError& o) {
+    result_.error = result_.error.empty() ? o.what() : result_.error + "; then: " + o.what();
+    result_.completed = result_.stopped = false;
+    outputFailed_ = true;
+  }
+  void closeOutputs() {
+    try {
+      if (outputFailed_) return;
+      if (snapshots_ && !result_.completed && stepper_.failureKeepsConsistentState()) snapshot();  // where it stopped
+      history_->close();
+      writeParticles(stepper_.particles(), options_.outputDir / "particles_final.csv");  // also after a failure or a stop
+    } catch (const io::OutputError& o) {
+      outputFailure(o);
+    }
+  }
+
+  // --- checkpoint ---
+  void readRestart() {
+    stepper_.readCheckpoint(checkpointFile_, options_.sceneHash);
+    const RunBook& book = stepper_.book();
+    result_.restartedFrom = stepper_.steps();
+    result_.peakLoad = book.peakLoad;
+    watch_.peak = book.stopWatchPeak;
+    checkpointStep_ = stepper_.steps();
+    // Particle snapshots behind the checkpoint are done.
+    while (nextParticleSnapshot_ < scene_.particleSnapshots.size() &&
+           stepper_.progress() >= scene_.particleSnapshots[nextParticleSnapshot_] - stepper_.progressTolerance())
+      ++nextParticleSnapshot_;
+  }
+  bool checkpointDue() const {
+    const CheckpointSettings& every = scene_.checkpoint;
+    return (every.everySteps > 0 && stepper_.steps() % every.everySteps == 0) ||
+           (every.everyMinutes > 0.0 && secondsSince(lastCheckpoint_) >= 60.0 * every.everyMinutes);
+  }
+  void checkpoint() {
+    if (checkpointStep_ == stepper_.steps()) return;
+    history_->flush();
+    RunBook& book = stepper_.book();
+    book.peakLoad = result_.peakLoad;
+    book.stopWatchPeak = watch_.peak;
+    book.history = {history_->bytes(), history_->digest(), history_->rows()};
+    if (snapshots_) book.snapshotTimes = snapshots_->times();
+    stepper_.writeCheckpoint(checkpointFile_, options_.sceneHash);
+    checkpointStep_ = stepper_.steps();
+    lastCheckpoint_ = WallClock::now();
+    ++result_.checkpoints;
+  }
+
+  // --- summary: the solver's keys, then the common ones ---
+  nlohmann::json summary() const {
+    const RunResult& r = result_;
+    nlohmann::json j = stepper_.summary(r);
+    j["scene"] = scene_.name;
+    j["status"] = r.completed ? "completed" : (r.stopped ? "stopped" : "failed");
+    j["peak_load"] = r.peakLoad;  // N
+    j["wall_time_s"] = r.wallTime;
+    j["steps"] = r.steps;
+    j["particles"] = r.particles;
+    j["checkpoints_written"] = r.checkpoints;
+    if (scene_.stopWhen) {
+      const StopWhen& w = *scene_.stopWhen;
+      j["stop_when"] = {{"condition", w.condition},
+                        {"load_below", w.loadBelow},
+                        {"after_time_s", w.afterTime},
+                        {"met", r.endedByStopWhen},
+                        {"peak_of_rows_N", watch_.peak}};
+      if (r.endedByStopWhen) j["stop_when"]["load_at_stop_N"] = r.stopLoad;
+    }
+    if (!r.completed && !r.stopped) j["error"] = r.error;
+    if (r.restartedFrom >= 0) j["restarted_from_step"] = r.restartedFrom;
+    if (!r.checkpoint.empty()) {
+      j["checkpoint"] = r.checkpoint.string();
+      j["checkpoint_step"] = checkpointStep_;
+    }
+    if (r.stopped && !options_.resumeCommand.empty()) j["resume"] = options_.resumeCommand;
+    return j;
+  }
+
+  const Scene& scene_;
+  const RunOptions& options_;
+  Stepper& stepper_;
+  const WallClock::time_point start_;
+  const std::filesystem::path checkpointFile_;
+  RunResult result_;
+  // output
+  std::unique_ptr<io::CsvWriter> history_;
+  std::unique_ptr<VtuSeries> snapshots_;
+  std::unique_ptr<io::Progress> progress_;
+  std::size_t nextParticleSnapshot_ = 0;
+  bool outputFailed_ = false;
+  bool rowObserverAsksStop_ = false;  // RunOptions::onRow returned false
+  // stop
+  StopWatch watch_;
+  std::size_t watched_ = 0;
+  int watchedComponent_ = 0;
+  bool anyDriven_ = false;
+  // checkpoint
+  long checkpointStep_ = -1;  // the step of the checkpoint on disk
+  WallClock::time_point lastCheckpoint_;
+};
+
+}  // namespace
+
+RunResult runLoop(const Scene& scene, const RunOptions& options, Stepper& stepper) {
+  return RunLoop(scene, options, stepper).execute();
+}
+
+}  // namespace ecm::mpm
