@@ -188,7 +188,12 @@ def run_study(study, out, scheduler=None, client=None, workers=None, threads=1, 
             own_cluster = LocalCluster(n_workers=workers or 2, threads_per_worker=1, processes=True,
                                        dashboard_address=":0")
             scheduler = own_cluster
-        client = Client(scheduler)
+        try:
+            client = Client(scheduler, timeout=30)
+        except OSError as e:
+            if own_cluster is not None:
+                own_cluster.close()
+            raise ConnectionError("cannot reach the Dask scheduler at %s: %s" % (scheduler, e)) from e
     try:
         return _run(plan, study, out, client, threads, progress)
     finally:
@@ -312,7 +317,18 @@ def main(argv=None):
         print("error: %s" % e, file=sys.stderr)
         return 2
     out = a.out or os.path.join("out", plan_name)
-    summary = run_study(a.study, out, scheduler=a.scheduler, workers=a.workers, threads=a.threads, progress=not a.quiet)
+    try:
+        summary = run_study(a.study, out, scheduler=a.scheduler, workers=a.workers, threads=a.threads,
+                            progress=not a.quiet)
+    except ConnectionError as e:  # a scheduler address that does not answer: a bad command line
+        print("error: %s" % e, file=sys.stderr)
+        return 2
+    except (_ecm.InputError, ValueError, FileNotFoundError) as e:  # e.g. a material file not found
+        print("error: %s" % e, file=sys.stderr)
+        return 2
+    except (_ecm.OutputError, OSError) as e:
+        print("error: %s" % e, file=sys.stderr)
+        return 1
     return 0 if summary.get("all_completed") else 1
 
 
