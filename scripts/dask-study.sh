@@ -15,7 +15,15 @@ export PYTHONPATH=$PWD/build/python${PYTHONPATH:+:$PYTHONPATH} OMP_NUM_THREADS=1
 mkdir -p "$out"
 cluster=$(mktemp -d)
 pids=()
-stop() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; rm -rf "$cluster"; }
+stop() {  # SIGTERM, and SIGKILL for a worker still inside a run after 10 s
+  for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done
+  for _ in $(seq 100); do
+    alive=0; for p in "${pids[@]}"; do kill -0 "$p" 2>/dev/null && alive=1; done
+    ((alive)) || break; sleep 0.1
+  done
+  for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done
+  wait 2>/dev/null || true; rm -rf "$cluster"
+}
 trap stop EXIT
 $py -m distributed.cli.dask_scheduler --host 127.0.0.1 --port 0 --dashboard-address :0 \
   --scheduler-file "$cluster/scheduler.json" >"$cluster/scheduler.log" 2>&1 &
