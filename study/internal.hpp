@@ -44,4 +44,11 @@ void writeTable(const Study& study, const StudyResult& result, std::ostream& out
 void plotPareto(const Study& study, const StudyResult& result, const std::filesystem::path& dir);
 nlohmann::json summaryJson(const Study& study, const StudyResult& result, const StudyOptions& options);
 
+// --- ensemble.cpp: samples: N ---
+
+// Writes ensemble_samples.csv, ensemble.csv, ensemble_histogram.png and weibull.png into dir
+// from the runs' folders (result.runs in plan order); returns summary.json's "ensemble".
+nlohmann::json writeEnsemble(const Study& study, const std::vector<PlannedRun>& plan, const StudyResult& result,
+                             const std::filesystem::path& dir);
+
 }  // namespace ecm::study::detail

@@ -117,8 +117,10 @@ Study readStudy(const YamlMap& m) {
   if (m.has("set")) s.set = readSettings(m.child("set"));
   s.design = m.getEnumOr("design", {"grid", "one_at_a_time"}, "grid") == "grid" ? StudyDesign::Grid : StudyDesign::OneAtATime;
 
-  const YamlMap knobs = m.child("knobs");
-  for (const Setting& k : readSettings(knobs)) {
+  const bool sampled = m.has("samples");
+  const YamlMap knobs = m.has("knobs") || !sampled ? m.child("knobs") : m;  // (m: none, samples: is the only knob)
+  const std::vector<Setting> knobSettings = m.has("knobs") ? readSettings(knobs) : std::vector<Setting>{};
+  for (const Setting& k : knobSettings) {
     if (!k.value.IsSequence() || k.value.size() == 0)
       knobs.fail(k.key, "expected a non-empty sequence of values, e.g. [0.1, 0.3]");
     if (numericKnob(k.key) && s.kind != StudyKind::Mpm) knobs.fail(k.key, "applies to mpm scenes only");
@@ -135,6 +137,15 @@ Study readStudy(const YamlMap& m) {
       knob.values.push_back(v);
     }
     s.knobs.push_back(std::move(knob));
+  }
+  if (sampled) {  // the ensemble shorthand: the last knob, seeds 1..N (see study.hpp)
+    if (s.kind != StudyKind::Mpm) m.fail("samples", "applies to mpm studies (an RVE scene) only");
+    s.samples = m.get<int>("samples", Range::closed(2.0, 100000.0));
+    for (const Knob& k : s.knobs)
+      if (k.key == kSampleSeed) knobs.fail(k.key, "is what samples: sets; give one or the other");
+    Knob seeds{kSampleSeed, {}, m.line("samples")};
+    for (int i = 1; i <= s.samples; ++i) seeds.values.emplace_back(i);
+    s.knobs.push_back(std::move(seeds));
   }
   if (s.knobs.empty()) m.fail("knobs", "needs at least one knob (key path: [values])");
 
@@ -200,6 +211,9 @@ Study readStudy(const YamlMap& m) {
     s.metrics = available;
   }
   s.repeat = m.getOr<int>("repeat", 1, Range::closed(1.0, 100.0));
+  if (sampled && (s.condition.empty() || s.reference == ReferenceKind::BarVibration))
+    m.fail("samples", "needs a reference run or scene with a condition (the pulled edge, whose largest reaction is the "
+                      "sample's strength), e.g. reference: {run: {\"" + std::string(kSampleSeed) + "\": 1}, condition: top}");
   m.finish();
   return s;
 }
@@ -423,6 +437,7 @@ std::vector<PlannedRun> planStudy(const Study& study) {
     run.sceneText = "# ecm-study " + study.name + ", run " + std::to_string(run.id) + ": " + run.label +
                     "\n# The base scene " + baseFile + " with the study's values; file references are relative to it.\n" +
                     YAML::Dump(root) + "\n";
+    run.sceneFile = baseFile;
     plan.push_back(std::move(run));
   }
   return plan;

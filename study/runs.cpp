@@ -44,12 +44,6 @@ std::string sanitize(const std::string& label) {
   return s.substr(0, 80);
 }
 
-std::string runDirectory(const PlannedRun& r) {
-  char id[16];
-  std::snprintf(id, sizeof id, "%03d", r.id);
-  return std::string("runs/") + id + "-" + sanitize(r.label);
-}
-
 double parentRssMb() {
   std::ifstream statm("/proc/self/statm");
   long pages = 0, resident = 0;
@@ -101,11 +95,20 @@ class Executor {
     r.metrics.assign(study_.metrics.size(), NAN);
     const std::filesystem::path dir = io::prepareOutputDir(dir_ / r.directory);
     std::error_code ec;
-    const bool reuse = options_.resume && study_.kind == StudyKind::Mpm && std::filesystem::exists(dir / "scene.yaml", ec) &&
-                       readText(dir / "scene.yaml") == p.sceneText && std::filesystem::exists(dir / "study_run.json", ec) &&
-                       std::filesystem::exists(dir / "summary.json", ec);
+    const bool collect = options_.collectOnly && study_.kind == StudyKind::Mpm;
+    // (collected: study_run.json marks a folder written whole; a run without summary.json then
+    // fails with its error.txt, as a run of this process does)
+    const bool reuse = (options_.resume || collect) && study_.kind == StudyKind::Mpm &&
+                       std::filesystem::exists(dir / "scene.yaml", ec) && readText(dir / "scene.yaml") == p.sceneText &&
+                       std::filesystem::exists(dir / "study_run.json", ec) &&
+                       (collect || std::filesystem::exists(dir / "summary.json", ec));
+    if (collect && !reuse) {
+      r.status = "failed";
+      r.message = "not run: no outputs of this scene in " + r.directory;
+      return r;
+    }
     if (!reuse) io::writeFileAtomically(dir / "scene.yaml", p.sceneText);
-    r.reused = reuse;
+    r.reused = reuse && !collect;
     if (study_.kind == StudyKind::Mpm) runMpm(p, dir, reuse, r, ref, refJson);
     else runPointScene(p, dir, r, ref, refJson);
     double worst = NAN;
@@ -327,8 +330,11 @@ class Executor {
     const mpm::Scene scene = mpm::loadSceneFile(study_.referenceScene);
     RunRecord r;
     MpmOutcome out;
-    const bool reuse = options_.resume && readSummary(dir, r, out) && r.status == "completed";
-    if (!reuse) {
+    const bool reuse = (options_.resume || options_.collectOnly) && readSummary(dir, r, out) && r.status == "completed";
+    if (options_.collectOnly && !reuse) {
+      r.status = "failed";
+      r.message = "not run: no completed outputs in reference/";
+    } else if (!reuse) {
       executeMpm(scene, dir);
       if (!readSummary(dir, r, out)) r.status = "failed";
     }
@@ -421,6 +427,12 @@ class Executor {
 
 }  // namespace
 
+std::string runDirectory(const PlannedRun& r) {
+  char id[16];
+  std::snprintf(id, sizeof id, "%03d", r.id);
+  return std::string("runs/") + id + "-" + sanitize(r.label);
+}
+
 StudyResult runStudy(const Study& study, const std::vector<PlannedRun>& plan, const StudyOptions& options) {
   const std::filesystem::path dir = io::prepareOutputDir(options.outputDir);
   std::vector<std::size_t> order(plan.size());
@@ -463,7 +475,9 @@ StudyResult runStudy(const Study& study, const std::vector<PlannedRun>& plan, co
   for (std::size_t i = 0; i < result.runs.size(); ++i) result.runs[i].pareto = front[i];
 
   writeTableCsv(study, result, dir / "study.csv");
-  io::writeJsonSummary(summaryJson(study, result, options), dir / "summary.json");
+  nlohmann::json summary = summaryJson(study, result, options);
+  if (study.samples > 0) result.ensemble = summary["ensemble"] = writeEnsemble(study, plan, result, dir);
+  io::writeJsonSummary(summary, dir / "summary.json");
   plotPareto(study, result, dir);
   if (options.table) writeTable(study, result, *options.table);
   return result;

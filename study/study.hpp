@@ -36,6 +36,10 @@
 //     #                            implicit solution as the rate-free reference of explicit runs)
 //     metrics: [period, amplitude] # optional subset; the run's error is the largest |metric|
 //   repeat: 1                      # runs per setting; the shortest wall time is kept
+//   samples: 20                    # RVE ensembles: shorthand for the knob bodies[0].rve.seed: [1, 2,
+//                                  #   ..., 20] (the last knob; knobs: may then be left out); needs a
+//                                  #   reference with a condition, the pulled edge: every sample's
+//                                  #   strength is that condition's largest reaction (ensemble.cpp)
 //
 // Metrics (signed relative errors): bar_vibration: period, amplitude; uniaxial_tension and point
 // runs: stress_path (max deviation / f_t'), dissipation, peak_stress; mpm runs: peak_load
@@ -94,6 +98,9 @@ struct SceneChoice {
 // io::InputError when the file does not exist or the value is malformed.
 SceneChoice readSceneChoice(const YAML::Node& value, const std::string& studyFile, int line);
 
+// The knob that `samples: N` stands for (the random seed of the scene's first body, an rve: body).
+inline constexpr const char* kSampleSeed = "bodies[0].rve.seed";
+
 struct Study {
   std::string name;
   std::string file;  // the study file, for messages
@@ -109,6 +116,7 @@ struct Study {
   std::filesystem::path referenceScene;    // Scene: the reference's scene file
   std::vector<std::string> metrics;        // the errors that make up a run's error
   int repeat = 1;
+  int samples = 0;  // samples: N (0: not an ensemble); the last knob is then kSampleSeed
 };
 
 // The metrics a reference offers, for a study kind.
@@ -124,6 +132,7 @@ struct PlannedRun {
   std::vector<std::string> values;  // per knob: the value as text (the base value if not set)
   bool reference = false;
   std::string sceneText;            // the edited scene (YAML), kept in the run folder
+  std::filesystem::path sceneFile;  // the file sceneText is read as (its folder resolves material files)
   std::optional<mpm::Scene> scene;       // kind mpm
   std::optional<driver::PointScene> point;  // kind point
   std::size_t particles = 0;        // mpm: seeded particles
@@ -134,6 +143,8 @@ struct PlannedRun {
 // value is an InputError "STUDY:LINE: run N (knob=value): SCENE:LINE: reason" before anything
 // runs. Runs with identical values are planned once.
 std::vector<PlannedRun> planStudy(const Study& study);
+// A run's folder, relative to the study folder: runs/NNN-label.
+std::string runDirectory(const PlannedRun& run);
 
 // The edits of the study, exposed for tests. Both throw std::invalid_argument.
 void setKeyPath(YAML::Node& root, const std::string& path, const YAML::Node& value);
@@ -151,6 +162,10 @@ struct StudyOptions {
   bool progress = true;    // a line per run on stderr
   bool resume = false;     // mpm: reuse a run folder whose scene.yaml is this run's (an interrupted study goes on)
   std::ostream* table = nullptr;  // the final table (stdout in ecm-study)
+  // mpm: run nothing, only read the run folders (and DIR/reference) that something else filled
+  // (the Dask path, python/ecm/study.py) as --resume reads them; a run without its outputs there
+  // is failed ("not run"). Point runs still run here (they take milliseconds).
+  bool collectOnly = false;
 };
 
 struct RunRecord {
@@ -180,6 +195,7 @@ struct StudyResult {
   nlohmann::json reference;  // the closed-form values or the reference run's values
   bool allCompleted = true;
   double studyRssMb = NAN;   // the study's own resident memory (isolated runs start from it)
+  nlohmann::json ensemble;   // samples: N: summary.json's "ensemble" (null otherwise)
 };
 
 // Runs the plan (the reference run first), writes DIR/study.csv, DIR/summary.json,
@@ -189,6 +205,31 @@ StudyResult runStudy(const Study& study, const std::vector<PlannedRun>& plan, co
 // Non-dominated points of (cost, error): no other point has cost <= and error <= with one of
 // them strictly smaller. Points with a non-finite cost or error are never on the front.
 std::vector<bool> paretoFront(const std::vector<double>& cost, const std::vector<double>& error);
+
+// --- RVE ensembles (samples: N, ensemble.cpp) ---
+
+// The sample statistics of n >= 2 values: mean, standard deviation (n - 1), coefficient of
+// variation, the two-sided confidence interval of the mean (Student's t) and of the coefficient
+// of variation (McKay's approximation as modified by Vangel, 1996), and the samples n_1% the mean
+// needs to lie within 1 % at that confidence, n = (t cv / 0.01)^2 iterated on t's degrees.
+struct SampleStatistics {
+  std::size_t count = 0;
+  double mean = NAN, stdDev = NAN, cov = NAN;
+  double confidence = 0.95;
+  double meanLow = NAN, meanHigh = NAN, covLow = NAN, covHigh = NAN;
+  long samplesForOnePercent = 0;
+};
+SampleStatistics sampleStatistics(const std::vector<double>& x, double confidence = 0.95);
+
+// A two-parameter Weibull fit of positive values, P(x) = 1 - exp(-(x / scale)^modulus): the
+// maximum-likelihood modulus and scale, and the fit's quality on the Weibull plot (ln x against
+// ln(-ln(1 - F)), median ranks F = (i - 0.3) / (n + 0.4)): the coefficient of determination R^2
+// of the points against the fitted line, and the Kolmogorov-Smirnov distance of the fit.
+struct WeibullFit {
+  double modulus = NAN, scale = NAN;
+  double rSquared = NAN, ksDistance = NAN;
+};
+WeibullFit fitWeibull(const std::vector<double>& x);
 
 // --- closed forms and measures (exposed for tests) ---
 

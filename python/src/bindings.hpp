@@ -13,6 +13,7 @@ void bindMaterial(py::module_& m);     // Material, PointState, BandState, Updat
 void bindPoint(py::module_& m);        // point runs and the snap-back study (driver/)
 void bindCalibration(py::module_& m);  // ecm-calibrate's computations (calibration/)
 void bindMpm(py::module_& m);          // ecm-mpm runs (mpm/)
+void bindStudy(py::module_& m);        // ecm-study's plan and report (study/), for the Dask path
 
 // A JSON document (the tools' summary.json) as Python objects, through Python's json module:
 // numbers are written with 17 significant digits and read back to the same doubles.

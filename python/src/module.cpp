@@ -19,4 +19,5 @@ PYBIND11_MODULE(_ecm, m) {
   ecm::python::bindPoint(m);
   ecm::python::bindCalibration(m);
   ecm::python::bindMpm(m);
+  ecm::python::bindStudy(m);
 }
