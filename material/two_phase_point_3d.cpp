@@ -147,15 +147,12 @@ Vec3 TwoPhasePoint3D::onsetNormal(const Voigt6& strain) const {
   return canonicalNormal3(largestPrincipal(stiffness_ * strain).firstDirection);
 }
 
-UpdateResult3 TwoPhasePoint3D::updateIntact(Voigt6& strain, const Voigt6& increment, const EffectiveSize3& size,
-                                            std::optional<BandState3>& onset, UpdateOptions options) const {
+UpdateResult3 TwoPhasePoint3D::updateIntactSlow(Voigt6& strain, const Voigt6& increment, const EffectiveSize3& size,
+                                                std::optional<BandState3>& onset, UpdateOptions options) const {
   UpdateResult3 r;
   r.stress = stiffness_ * (strain + increment);
   r.tangent = stiffness_;
-  const Voigt6& s = r.stress;
-  const double sq = s.head<3>().squaredNorm() + 2.0 * s.tail<3>().squaredNorm();
-  const std::optional<double> alpha =
-      onsetBound_ * sq < law_.onsetDrivingForce() ? std::nullopt : onsetFraction(strain, increment);
+  const std::optional<double> alpha = onsetFraction(strain, increment);
   if (!alpha) {
     strain += increment;
     return r;

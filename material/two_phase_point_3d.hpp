@@ -53,8 +53,19 @@ class TwoPhasePoint3D {
 
   // Intact point: elastic, or onset inside the increment (split at the exact onset, Eq. (12)
   // with D = 0); `onset` then receives the band and the rest is taken cracked.
+  // (Inline: the elastic case is the common one.)
   UpdateResult3 updateIntact(Voigt6& strain, const Voigt6& strainIncrement, const EffectiveSize3& size,
-                             std::optional<BandState3>& onset, UpdateOptions options = {}) const;
+                             std::optional<BandState3>& onset, UpdateOptions options = {}) const {
+    UpdateResult3 r;
+    r.stress.noalias() = stiffness_ * (strain + strainIncrement);
+    const Voigt6& s = r.stress;
+    if (onsetBound_ * (s.head<3>().squaredNorm() + 2.0 * s.tail<3>().squaredNorm()) < law_.onsetDrivingForce()) {
+      strain += strainIncrement;  // surely intact: Y <= onsetBound_ |sigma|^2 < F(0)
+      r.tangent = stiffness_;
+      return r;
+    }
+    return updateIntactSlow(strain, strainIncrement, size, onset, options);
+  }
   // Cracked point: predictor-corrector, then the snap-back policy. State unchanged on failure.
   UpdateResult3 updateCracked(BandState3& band, Voigt6& strain, const Voigt6& strainIncrement,
                               UpdateOptions options = {}) const;
@@ -95,6 +106,8 @@ class TwoPhasePoint3D {
   double poissonRatio() const { return nu_; }
 
  private:
+  UpdateResult3 updateIntactSlow(Voigt6& strain, const Voigt6& strainIncrement, const EffectiveSize3& size,
+                                 std::optional<BandState3>& onset, UpdateOptions options) const;
   UpdateResult3 predictCorrect(BandState3& b, Voigt6& strain, const Voigt6& increment, bool tangent,
                                unsigned stressControlled) const;
   double crackedTolerance(const Voigt6& aEps, double f) const;
