@@ -7,6 +7,7 @@
 
 #include <iostream>
 
+#include "driver/point_driver_3d.hpp"
 #include "driver/point_output.hpp"
 #include "driver/point_scene_yaml.hpp"
 #include "driver/snapback_study.hpp"
@@ -37,6 +38,23 @@ int main(int argc, char** argv) {
       running = true;
       const ecm::driver::SnapBackStudyResult r = ecm::driver::runSnapBackStudy(s, dir, std::cout);
       return r.allRunsCompleted ? ecm::io::kExitDone : ecm::io::kExitRunFailed;
+    }
+    if (ecm::driver::isThreeDimensionalScene(ecm::io::loadYamlFile(scene))) {
+      const ecm::driver::PointScene3 s = ecm::driver::loadPointScene3(scene);
+      const auto dir = ecm::io::prepareOutputDir(out.empty() ? "out/point/" + std::filesystem::path(scene).stem().string() : out);
+      running = true;
+      ecm::io::Progress::Options options;
+      options.label = "ecm-point " + s.name + " (3D)";
+      ecm::io::Progress progress(ecm::driver::totalIncrements(s), options);
+      const ecm::driver::PointRun3 run = ecm::driver::runPoint3D(s, [&](const ecm::driver::HistoryRow3&, int done, int) { progress.update(done); });
+      progress.finish();
+      ecm::driver::writePointOutputs3(s, run, dir);
+      std::cout << "outputs in " << dir.string() << "\n";
+      if (!run.completed) {
+        std::cerr << "ecm-point: run stopped: " << run.failure << " (everything up to it is in " << dir.string() << ")\n";
+        return ecm::io::kExitRunFailed;
+      }
+      return ecm::io::kExitDone;
     }
     const ecm::driver::PointScene s = ecm::driver::loadPointScene(scene);
     const auto dir = ecm::io::prepareOutputDir(out.empty() ? "out/point/" + std::filesystem::path(scene).stem().string() : out);

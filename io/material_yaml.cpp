@@ -66,9 +66,10 @@ MaterialParams readInline(const YamlMap& m, const std::string& defaultName) {
   p.name = m.getOr<std::string>("name", defaultName);
   const std::string model = m.getEnum("model", {"enriched", "smeared_crack", "linear_elastic"});
   p.model = modelKind(model);
-  p.elastic.hypothesis = m.getEnum("hypothesis", {"plane_stress", "plane_strain"}) == "plane_strain"
-                             ? Hypothesis::PlaneStrain
-                             : Hypothesis::PlaneStress;
+  const std::string hypothesis = m.getEnum("hypothesis", {"plane_stress", "plane_strain", "three_dimensional"});
+  p.elastic.hypothesis = hypothesis == "plane_strain"        ? Hypothesis::PlaneStrain
+                         : hypothesis == "three_dimensional" ? Hypothesis::ThreeDimensional
+                                                             : Hypothesis::PlaneStress;
   p.elastic.youngsModulus = m.get<double>("youngs_modulus");
   p.elastic.poissonRatio = m.get<double>("poisson_ratio");
   p.density = m.getOr<double>("density", 0.0);
@@ -161,8 +162,7 @@ std::string materialYaml(const MaterialParams& p) {
   out << "# ecm material. Units: mm, N, MPa, tonne (density in t/mm^3).\n";
   out << "name: " << quotedName(p.name) << '\n';
   line(out, "model", toString(p.model), "enriched | smeared_crack | linear_elastic");
-  line(out, "hypothesis", p.elastic.hypothesis == Hypothesis::PlaneStrain ? "plane_strain" : "plane_stress",
-       "plane_stress | plane_strain");
+  line(out, "hypothesis", toString(p.elastic.hypothesis), "plane_stress | plane_strain | three_dimensional");
   line(out, "youngs_modulus", p.elastic.youngsModulus, "E (MPa)");
   line(out, "poisson_ratio", p.elastic.poissonRatio, "nu (-)");
   if (p.density > 0.0) line(out, "density", p.density, "t/mm^3");

@@ -4,7 +4,7 @@
 //
 //   name: den-concrete
 //   model: enriched          # enriched | smeared_crack | linear_elastic
-//   hypothesis: plane_stress # plane_stress | plane_strain
+//   hypothesis: plane_stress # plane_stress | plane_strain | three_dimensional (3D callers only)
 //   youngs_modulus: 32000    # E (MPa)
 //   poisson_ratio: 0.2       # nu
 //   density: 2.4e-9          # t/mm^3 (optional, 0 = not given)

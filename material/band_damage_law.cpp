@@ -1,5 +1,6 @@
 #include "material/band_damage_law.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "material/driving_force.hpp"
@@ -15,13 +16,19 @@ BandDamageLaw::BandDamageLaw(const BandDamageParams& p)
     : law_((p.validate(), p.law())),
       stiffness_(elasticStiffness(p.elastic)),
       compliance_(elasticCompliance(p.elastic)),
-      onsetY_(damageFunction(law_, 1.0)) {}
+      onsetY_(damageFunction(law_, 1.0)),
+      planeStrain_(p.elastic.hypothesis == Hypothesis::PlaneStrain),
+      nu_(p.elastic.poissonRatio),
+      // plane stress: the largest eigenvalue of the 2D compliance / 2; plane strain: that of the
+      // 3D compliance / 2 times |sigma+|^2 <= (1 + 2 nu^2) (p1^2 + p2^2) with p3 = nu (p1 + p2)
+      drivingForceBound_(planeStrain_ ? 0.5 * std::max(1.0 + nu_, 1.0 - 2.0 * nu_) * (1.0 + 2.0 * nu_ * nu_) / law_.youngsModulus
+                                      : 0.5 * (compliance_(0, 0) + std::abs(compliance_(0, 1)))) {}
 
 BandResponse BandDamageLaw::evaluate(const LoadingSurface& surface, const Voigt& strain, bool loadingTangent) const {
   const double x0 = surface.integrity, threshold = surface.threshold;
   BandResponse r;
   const Voigt effective = stiffness_ * strain;
-  const DrivingForce y = drivingForce(effective, compliance_);  // Eq. (12)
+  const DrivingForce y = drivingForceOf(effective);  // Eq. (12)
   r.drivingForce = y.value;
   r.drivingForceRate = y.stressGradient.transpose() * stiffness_;
   r.loading = y.value > threshold;
@@ -52,7 +59,7 @@ BandResponse BandDamageLaw::evaluate(const LoadingSurface& surface, const Voigt&
 
 std::optional<double> BandDamageLaw::onsetFraction(const Voigt& strain, const Voigt& increment) const {
   const double yOnset = onsetY_;
-  auto excess = [&](double a) { return drivingForceValue(stiffness_ * (strain + a * increment), compliance_) - yOnset; };
+  auto excess = [&](double a) { return drivingForceValue(stiffness_ * (strain + a * increment)) - yOnset; };
   double gb = excess(1.0);
   if (gb < 0.0) return std::nullopt;
   double ga = excess(0.0);

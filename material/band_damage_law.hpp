@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "material/damage_function.hpp"
+#include "material/driving_force.hpp"
 #include "material/linear_elastic.hpp"
 
 namespace ecm {
@@ -71,6 +72,18 @@ class BandDamageLaw {
     return dissipationBetween(law_, xOld, xNew, fOld, fNew);
   }
   double onsetDrivingForce() const { return onsetY_; }
+  // Y of Eq. (12) for an effective stress: the in-plane split in plane stress, the 3D split
+  // (sigma_zz = nu (sxx + syy) as the third principal value) in plane strain (docs/model.md).
+  double drivingForceValue(const Voigt& effectiveStress) const {
+    return planeStrain_ ? drivingForcePlaneStrainValue(effectiveStress, law_.youngsModulus, nu_)
+                        : ecm::drivingForceValue(effectiveStress, compliance_);
+  }
+  DrivingForce drivingForceOf(const Voigt& effectiveStress) const {
+    return planeStrain_ ? drivingForcePlaneStrain(effectiveStress, law_.youngsModulus, nu_)
+                        : drivingForce(effectiveStress, compliance_);
+  }
+  // b with Y <= b (sxx^2 + syy^2 + 2 sxy^2) for every effective stress: a cheap no-onset test.
+  double drivingForceBound() const { return drivingForceBound_; }
   // Fraction alpha in [0, 1] of a strain increment at which the undamaged law first meets the
   // onset criterion, Eq. (12) with D = 0; nullopt if it is not met within the increment.
   std::optional<double> onsetFraction(const Voigt& strain, const Voigt& strainIncrement) const;  // F(D = 0) = f_t'^2 / (2E)
@@ -83,6 +96,9 @@ class BandDamageLaw {
   Tangent stiffness_;
   Tangent compliance_;
   double onsetY_;
+  bool planeStrain_;
+  double nu_;
+  double drivingForceBound_;
 };
 
 }  // namespace ecm

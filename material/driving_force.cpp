@@ -27,4 +27,22 @@ DrivingForce drivingForce(const Voigt& s, const Tangent& c) {
   return y;
 }
 
+DrivingForce drivingForcePlaneStrain(const Voigt& s, double e, double nu) {
+  const Principal pr = principalStresses(s);
+  const double p[3] = {pr.first, pr.second, nu * (s[0] + s[1])};
+  DrivingForce y;
+  y.value = drivingForceOfPrincipal(p[0], p[1], p[2], e, nu);  // Eq. (12)
+  if (y.value == 0.0) return y;
+  // dY/dp_i, one-sided at a principal value that is zero to round-off (counted as opening).
+  const double zero = -1e-9 * std::max({std::abs(p[0]), std::abs(p[1]), std::abs(p[2])});
+  const double pp[3] = {std::max(p[0], 0.0), std::max(p[1], 0.0), std::max(p[2], 0.0)};
+  double dy[3];
+  for (int i = 0; i < 3; ++i) dy[i] = p[i] >= zero ? (pp[i] - nu * (pp[0] + pp[1] + pp[2] - pp[i])) / e : 0.0;
+  // sigma_zz = nu (sxx + syy) = nu (p1 + p2): its gradient is nu (n1 (x) n1 + n2 (x) n2).
+  const Vec2& n1 = pr.firstDirection;
+  const Vec2 n2(-n1[1], n1[0]);
+  y.stressGradient = (dy[0] + nu * dy[2]) * normalProjector(n1) + (dy[1] + nu * dy[2]) * normalProjector(n2);
+  return y;
+}
+
 }  // namespace ecm

@@ -50,8 +50,18 @@ std::variant<LinearElastic, SmearedCrack, TwoPhasePoint> makeModel(const Materia
 }
 }  // namespace
 
+namespace {
+const MaterialParams& checked2D(const MaterialParams& p) {
+  if (p.elastic.hypothesis == Hypothesis::ThreeDimensional)
+    throw ParameterError("hypothesis three_dimensional needs a 3D caller (ecm-point, the UMAT; Material3D): "
+                         "this one is 2D (plane_stress | plane_strain)");
+  p.validate();
+  return p;
+}
+}  // namespace
+
 Material::Material(const MaterialParams& p)
-    : params_((p.validate(), p)), stiffness_(elasticStiffness(p.elastic)), model_(makeModel(p)) {
+    : params_(checked2D(p)), stiffness_(elasticStiffness(p.elastic)), model_(makeModel(p)) {
   if (const auto* s = smeared()) params_.softeningModulus = s->law().law().softeningModulus;
 }
 

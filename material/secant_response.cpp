@@ -39,7 +39,7 @@ UpdateResult TwoPhasePoint::updateCracked(BandState& b, SecantResponse& secant, 
   const Voigt eps = strain + increment;
   const Voigt aBand = secant.bandStressOfStrain * eps + secant.bandStressAtZeroStrain;  // a eps_L
   // Y of Eq. (12) above the loading surface (or not a number): the band loads, the full update.
-  if (!(drivingForceValue(aBand, law_.compliance()) <= secant.threshold)) return updateCracked(b, strain, increment, options);
+  if (!(law_.drivingForceValue(aBand) <= secant.threshold)) return updateCracked(b, strain, increment, options);
   const double f = b.volumeFraction;
   const Voigt aEps = stiffness() * eps;
   UpdateResult res;

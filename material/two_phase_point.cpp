@@ -50,14 +50,14 @@ void EnrichedParams::validate() const {
 TwoPhasePoint::TwoPhasePoint(const EnrichedParams& p)
     : law_((p.validate(), p.band)),
       bandWidth_(p.bandWidth),
-      onsetBound_(0.5 * (law_.compliance()(0, 0) + std::abs(law_.compliance()(0, 1)))),
+      onsetBound_(law_.drivingForceBound()),
       shearModulus_(law_.stiffness()(2, 2)),
       acousticRatio_((law_.stiffness()(0, 1) + law_.stiffness()(2, 2)) / law_.stiffness()(0, 0)),
       secondBand_(p.secondBand),
       secondOnsetStress_(std::sqrt(2.0 * law_.onsetDrivingForce() / law_.compliance()(0, 0))) {}
 
 double TwoPhasePoint::intactDrivingForce(const Voigt& strain) const {
-  return drivingForceValue(stiffness() * strain, law_.compliance());  // bitwise drivingForce().value
+  return law_.drivingForceValue(stiffness() * strain);  // bitwise drivingForce().value
 }
 
 std::optional<double> TwoPhasePoint::onsetFraction(const Voigt& strain, const Voigt& increment) const {
@@ -207,7 +207,7 @@ UpdateResult TwoPhasePoint::predictCorrect(BandState& b, Voigt& strain, const Vo
   }
   // The loading surface F(x0) >= F(1): a band whose Y is below onset (a closed or barely open
   // crack) is unloading without evaluating F (a pow).
-  const double y = drivingForceValue(aBand, law_.compliance());
+  const double y = law_.drivingForceValue(aBand);
   const bool belowOnset = y <= law_.onsetDrivingForce();
   const BandDamageLaw::LoadingSurface surface =
       belowOnset ? BandDamageLaw::LoadingSurface{x0, law_.onsetDrivingForce()} : law_.loadingSurface(x0);

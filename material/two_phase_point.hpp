@@ -133,7 +133,7 @@ class TwoPhasePoint {
   // bound, else Y(s) < F(D = 0) of Eq. (12) itself: the test onsetFraction() makes first, so a
   // point that passes it would take no other path through updateIntact() either.
   bool staysIntact(const Voigt& s) const {
-    return surelyIntact(s) || drivingForceValue(s, law_.compliance()) < law_.onsetDrivingForce();
+    return surelyIntact(s) || law_.drivingForceValue(s) < law_.onsetDrivingForce();
   }
   UpdateResult updateCracked(BandState& band, Voigt& strain, const Voigt& strainIncrement,
                              UpdateOptions options = {}) const;

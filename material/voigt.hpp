@@ -10,7 +10,16 @@ using Vec2 = Eigen::Vector2d;
 using Mat2 = Eigen::Matrix2d;
 using JumpMap = Eigen::Matrix<double, 3, 2>;
 
-enum class Hypothesis { PlaneStress, PlaneStrain };
+// ThreeDimensional: six strain components (material/voigt3.hpp, Material3D); the 2D callers refuse it.
+enum class Hypothesis { PlaneStress, PlaneStrain, ThreeDimensional };
+inline const char* toString(Hypothesis h) {
+  switch (h) {
+    case Hypothesis::PlaneStress: return "plane_stress";
+    case Hypothesis::PlaneStrain: return "plane_strain";
+    case Hypothesis::ThreeDimensional: return "three_dimensional";
+  }
+  return "?";
+}
 
 // Principal values (first >= second) and the unit direction of the first one.
 struct Principal {

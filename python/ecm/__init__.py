@@ -13,6 +13,7 @@ Units everywhere: mm, N, MPa, tonne, s (density in t/mm^3).
 The compiled part is ecm._ecm (python/src/); what the tools read and write is documented in
 docs/inputs.md and docs/tools.md, and every function here reads the same inputs the same way.
 """
+import json
 import os
 import tempfile
 from dataclasses import dataclass, field
@@ -27,7 +28,7 @@ from .mpm_output import MpmOutput, read_mpm_output
 
 __all__ = ["STATUS", "BandState", "CalibrationError", "CheckpointError", "InputError", "Material", "OutputError",
            "ParameterError", "PointArray", "PointState", "UpdateResult", "__version__", "fracture_energy",
-           "softening_modulus", "PointRun", "run_point", "snapback_study", "calibrate", "fit_softening",
+           "softening_modulus", "PointRun", "run_point", "run_point_3d", "snapback_study", "calibrate", "fit_softening",
            "run_scene", "MpmOutput", "read_mpm_output"]
 
 
@@ -48,6 +49,22 @@ def run_point(scene, out=None):
     With `out`, also writes ecm-point's output folder there."""
     columns, rows, summary = _ecm._run_point(_path_or_dict(scene), None if out is None else os.fspath(out))
     return PointRun({c: rows[:, i].copy() for i, c in enumerate(columns)}, summary)
+
+
+def run_point_3d(scene, out=None):
+    """Runs a 3D point scene (hypothesis: three_dimensional; a YAML file's path or a dict) as
+    ecm-point does and returns its history.csv as columns and its summary; the files go to `out`
+    (a temporary folder if None)."""
+    def read(folder):
+        completed, _ = _ecm._run_point_3d(_path_or_dict(scene), os.fspath(folder))
+        table = np.genfromtxt(os.path.join(folder, "history.csv"), delimiter=",", names=True)
+        with open(os.path.join(folder, "summary.json")) as f:
+            summary = json.load(f)
+        return PointRun({c: np.asarray(table[c], dtype=float) for c in table.dtype.names}, summary)
+    if out is None:
+        with tempfile.TemporaryDirectory(prefix="ecm-point-3d-") as tmp:
+            return read(os.path.join(tmp, "point"))
+    return read(out)
 
 
 def snapback_study(study, out=None):

@@ -11,6 +11,7 @@ namespace py = pybind11;
 void bindErrors(py::module_& m);       // exceptions carrying the tools' FILE:LINE: reason messages
 void bindMaterial(py::module_& m);     // Material, PointState, BandState, UpdateResult, PointArray
 void bindPoint(py::module_& m);        // point runs and the snap-back study (driver/)
+void bindPoint3D(py::module_& m);      // 3D point runs (driver/point_driver_3d.hpp)
 void bindCalibration(py::module_& m);  // ecm-calibrate's computations (calibration/)
 void bindMpm(py::module_& m);          // ecm-mpm runs (mpm/)
 void bindStudy(py::module_& m);        // ecm-study's plan and report (study/), for the Dask path

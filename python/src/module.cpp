@@ -17,6 +17,7 @@ PYBIND11_MODULE(_ecm, m) {
   ecm::python::bindErrors(m);
   ecm::python::bindMaterial(m);
   ecm::python::bindPoint(m);
+  ecm::python::bindPoint3D(m);
   ecm::python::bindCalibration(m);
   ecm::python::bindMpm(m);
   ecm::python::bindStudy(m);

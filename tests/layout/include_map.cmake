@@ -1,6 +1,7 @@
 # The project's rooms and who may include whom (README, "Layout"):
 #   material <- io <- {driver, calibration, mpm} <- study <- python
 # (python/ includes study/ for ecm-study's plan and report on the Dask path, python/ecm/study.py)
+#   material <- umat (the Abaqus UMAT: a shared library over the material alone)
 # Run as: cmake -DROOT=<source tree> -P include_map.cmake. Fails naming every file that includes
 # a folder it must not. bench/, tests/, fuzz/ and examples/ may include every folder and are not
 # checked.
@@ -11,7 +12,8 @@ set(allowed_calibration calibration io material)
 set(allowed_mpm mpm io material)
 set(allowed_study study mpm driver io material)
 set(allowed_python python study mpm driver calibration io material)
-set(rooms material io driver calibration mpm study python)
+set(allowed_umat umat material)
+set(rooms material io driver calibration mpm study python umat)
 
 if(NOT DEFINED ROOT)
   message(FATAL_ERROR "usage: cmake -DROOT=<source tree> -P include_map.cmake")

@@ -140,6 +140,29 @@ void checkModel(ModelKind kind, Hypothesis hyp, SecondBandOption option, std::ui
             const Principal p2 = principalStresses(m.stiffness() * a.secondBand->onsetStrain);
             smooth = std::abs(p2.second) > 1e-6 * std::abs(p2.first);
           }
+          // Not across a kink of Y (Eq. (12)) at the end state: a principal effective stress of a
+          // band changing sign between the two perturbed states (the in-plane ones, and in plane
+          // strain sigma_zz = nu (sxx + syy) of the 3D split, docs/model.md "The point in 3D" (a)).
+          if (smooth && a.band && b.band) {
+            const auto signs = [&](const Voigt& bandStrain) {
+              const Voigt sv = m.stiffness() * bandStrain;
+              const Principal pr = principalStresses(sv);
+              return (pr.first > 0.0 ? 1 : 0) + (pr.second > 0.0 ? 2 : 0) + (sv[0] + sv[1] > 0.0 ? 4 : 0);
+            };
+            if (!a.secondBand && !b.secondBand) {
+              smooth = signs(m.enriched()->equilibrium(*a.band, a.strain, a.band->jump, false).bandStrain) ==
+                       signs(m.enriched()->equilibrium(*b.band, b.strain, b.band->jump, false).bandStrain);
+            } else if (a.secondBand && b.secondBand) {
+              const auto bandStrains = [&](const MaterialPoint& q) {
+                const BandDamageLaw::LoadingSurface frozen[2] = {{q.band->integrity, INFINITY}, {q.secondBand->integrity, INFINITY}};
+                Vec4 jumps;
+                jumps << q.band->jump, q.secondBand->jump;
+                return m.enriched()->equilibrium(*q.band, *q.secondBand, frozen, q.strain, jumps, false);
+              };
+              const TwoBandEquilibrium ea = bandStrains(a), eb = bandStrains(b);
+              for (int i = 0; i < 2; ++i) smooth = smooth && signs(ea.bandStrain[i]) == signs(eb.bandStrain[i]);
+            }
+          }
           fd.col(j) = (ra.stress - rb.stress) / (2.0 * delta);
         }
         if (smooth) {

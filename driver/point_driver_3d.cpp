@@ -1,0 +1,222 @@
+#include "driver/point_driver_3d.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace ecm::driver {
+
+namespace {
+
+struct Step {
+  UpdateResult3 result;
+  Voigt6 increment = Voigt6::Zero();
+  int iterations = 0;
+  bool ok = false;
+};
+
+unsigned stressMask(const std::array<Control, 6>& c) {
+  unsigned m = 0;
+  for (int i = 0; i < 6; ++i)
+    if (c[i] == Control::Stress) m |= 1u << i;
+  return m;
+}
+
+// The increment meeting the targets with the stiffness k: strain components as given, the
+// stress-controlled ones from k_ss d_s = (target - current)_s - k_sk d_k.
+Voigt6 mixedIncrement(const Tangent6& k, const Voigt6& current, const std::array<Control, 6>& control,
+                      const Voigt6& strainIncrement, const Voigt6& stressTarget) {
+  std::vector<int> s, e;
+  for (int i = 0; i < 6; ++i) (control[i] == Control::Stress ? s : e).push_back(i);
+  Voigt6 d = Voigt6::Zero();
+  for (int i : e) d[i] = strainIncrement[i];
+  if (s.empty()) return d;
+  const int n = static_cast<int>(s.size());
+  Eigen::MatrixXd kss(n, n);
+  Eigen::VectorXd rhs(n);
+  for (int a = 0; a < n; ++a) {
+    rhs[a] = stressTarget[s[a]] - current[s[a]];
+    for (int i : e) rhs[a] -= k(s[a], i) * d[i];
+    for (int b = 0; b < n; ++b) kss(a, b) = k(s[a], s[b]);
+  }
+  const Eigen::VectorXd ds = kss.partialPivLu().solve(rhs);
+  for (int a = 0; a < n; ++a) d[s[a]] = ds[a];
+  return d;
+}
+
+// One mixed-control increment from `point` (committed on success).
+Step mixedStep(const Material3D& m, MaterialPoint3& point, const Voigt6& current, const std::array<Control, 6>& control,
+               const Voigt6& strainIncrement, const Voigt6& stressTarget, const EffectiveSize3& size,
+               const UpdateOptions& options, double tol) {
+  Step out;
+  Voigt6 d = mixedIncrement(m.stiffness(), current, control, strainIncrement, stressTarget);
+  const unsigned mask = stressMask(control);
+  for (int it = 0; it < 100; ++it) {
+    MaterialPoint3 trial = point;
+    out.result = m.update(trial, d, size, options);
+    out.iterations = it + 1;
+    if (!out.result.converged()) return out;
+    Voigt6 residual = Voigt6::Zero();
+    for (int i = 0; i < 6; ++i)
+      if (mask & (1u << i)) residual[i] = out.result.stress[i] - stressTarget[i];
+    if (residual.norm() <= tol) {
+      point = trial;
+      out.increment = d;
+      out.ok = true;
+      return out;
+    }
+    const Voigt6 correction = mixedIncrement(out.result.tangent, out.result.stress, control, Voigt6::Zero(), stressTarget);
+    if (!correction.allFinite()) return out;
+    d += correction;
+  }
+  out.result.status = UpdateStatus::NotConverged;
+  return out;
+}
+
+HistoryRow3 rowOf(const Material3D& m, const MaterialPoint3& p, const Voigt6& stress, int increment, int segment) {
+  HistoryRow3 r;
+  r.increment = increment;
+  r.segment = segment;
+  r.strain = p.strain;
+  r.stress = stress;
+  r.storedEnergy = m.storedEnergy(p);
+  if (p.band) {
+    r.damage = p.band->damage();
+    r.integrity = p.band->integrity;
+    r.crackNormal = p.band->crackNormal;
+    r.normalJump = p.band->normalJump();
+    r.slidingJump = p.band->slidingJump().norm();
+    r.volumeFraction = p.band->volumeFraction;
+  }
+  return r;
+}
+
+}  // namespace
+
+int totalIncrements(const PointScene3& scene) {
+  int n = 0;
+  for (const Segment3& s : scene.path) n += s.increments;
+  return n;
+}
+
+PointRun3 runPoint3D(const PointScene3& scene, const RowObserver3& observe) {
+  const Material3D m(scene.material);
+  const auto size = EffectiveSize3::fixed(scene.effectiveSize);
+  const double tol = scene.relativeTolerance * (scene.material.model == ModelKind::LinearElastic ? 1.0 : scene.material.tensileStrength);
+  PointRun3 run;
+  MaterialPoint3 p;
+  Voigt6 stress = Voigt6::Zero();
+  double work = 0.0, dissipation = 0.0;
+  int increment = 0;
+  const int total = totalIncrements(scene);
+  run.history.push_back(rowOf(m, p, stress, 0, 0));
+  const auto record = [&](HistoryRow3 row) {
+    row.work = work;
+    row.dissipation = dissipation;
+    run.history.push_back(row);
+    if (observe) observe(row, increment, total);
+  };
+  for (std::size_t seg = 0; seg < scene.path.size(); ++seg) {
+    const Segment3& s = scene.path[seg];
+    // Strain targets are absolute at the segment's end: per-increment strain steps from where it starts.
+    const Voigt6 startStrain = p.strain, startStress = stress;
+    for (int k = 1; k <= s.increments; ++k) {
+      ++increment;
+      const double t = double(k) / s.increments;
+      Voigt6 strainTarget = startStrain + t * (s.target - startStrain);
+      Voigt6 stressTarget = startStress + t * (s.target - startStress);
+      // Pieces: 1, 2, 4, ... of this increment until each converges.
+      bool done = false;
+      std::string why;
+      for (int level = 0; level <= scene.substepLevels && !done; ++level) {
+        const int pieces = 1 << level;
+        MaterialPoint3 q = p;
+        Voigt6 qs = stress;
+        double w = work, diss = dissipation;
+        std::vector<HistoryRow3> onsetRows;
+        bool ok = true, released = false;
+        int iterations = 0;
+        const Voigt6 fromStrain = p.strain, fromStress = stress;
+        for (int i = 1; i <= pieces && ok; ++i) {
+          const double f = double(i) / pieces;
+          const Voigt6 eTarget = fromStrain + f * (strainTarget - fromStrain), sTarget = fromStress + f * (stressTarget - fromStress);
+          UpdateOptions options(scene.snapBack, true);
+          options.stressControlled = stressMask(s.control);
+          options.substepLevels = 0;
+          // An intact enriched point steps exactly to onset first (the elastic increment is exact).
+          if (!q.band && m.enriched()) {
+            const Voigt6 elastic = mixedIncrement(m.stiffness(), qs, s.control, eTarget - q.strain, sTarget);
+            if (const auto alpha = m.enriched()->onsetFraction(q.strain, elastic); alpha && *alpha > 0.0 && *alpha < 1.0) {
+              const Voigt6 before = qs;
+              Step o = mixedStep(m, q, qs, s.control, *alpha * (eTarget - q.strain), qs + *alpha * (sTarget - qs), size, options, tol);
+              if (!o.ok) { ok = false; why = m.explain(o.result); break; }
+              w += 0.5 * (before + o.result.stress).dot(o.increment);
+              qs = o.result.stress;
+              HistoryRow3 row = rowOf(m, q, qs, increment, static_cast<int>(seg) + 1);
+              row.onset = true;
+              row.work = w;
+              row.dissipation = diss;
+              onsetRows.push_back(row);
+            }
+          }
+          const Voigt6 before = qs;
+          Step o = mixedStep(m, q, qs, s.control, eTarget - q.strain, sTarget, size, options, tol);
+          if (!o.ok) { ok = false; why = m.explain(o.result); break; }
+          iterations += o.iterations;
+          w += 0.5 * (before + o.result.stress).dot(o.increment);
+          diss += o.result.dissipation;
+          qs = o.result.stress;
+          released = released || o.result.released;
+        }
+        if (!ok) continue;
+        for (const HistoryRow3& r : onsetRows) run.history.push_back(r);
+        p = q;
+        stress = qs;
+        work = w;
+        dissipation = diss;
+        HistoryRow3 row = rowOf(m, p, stress, increment, static_cast<int>(seg) + 1);
+        row.iterations = iterations;
+        row.substeps = pieces;
+        row.snapBackRelease = released;
+        record(row);
+        done = true;
+      }
+      if (!done) {
+        std::ostringstream msg;
+        msg << "increment " << increment << " did not converge in " << (1 << scene.substepLevels) << " pieces: " << why;
+        run.failure = msg.str();
+        return run;
+      }
+    }
+  }
+  run.completed = true;
+  return run;
+}
+
+std::vector<Segment3> presetSegments3(const std::string& name, double strain, int increments, double confinement,
+                                      const Vec3& direction) {
+  Segment3 s;
+  s.increments = increments;
+  if (name == "uniaxial_tension") {
+    for (int i = 1; i < 6; ++i) s.control[i] = Control::Stress;
+    s.target[0] = strain;
+    return {s};
+  }
+  if (name == "triaxial") {
+    // First the confinement (elastic), then eps_xx at constant lateral stress.
+    Segment3 c;
+    c.increments = std::max(1, increments / 10);
+    for (int i = 0; i < 6; ++i) c.control[i] = Control::Stress;
+    c.target[1] = c.target[2] = confinement;
+    for (int i = 1; i < 6; ++i) s.control[i] = Control::Stress;
+    s.target[0] = strain;
+    s.target[1] = s.target[2] = confinement;
+    return {c, s};
+  }
+  // rotated_axis: uniaxial strain e d (x) d, every component strain-controlled.
+  const Vec3 d = direction.normalized();
+  s.target = stressVoigt(strain * d * d.transpose());
+  s.target.tail<3>() *= 2.0;
+  return {s};
+}
+
+}  // namespace ecm::driver

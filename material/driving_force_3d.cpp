@@ -1,0 +1,73 @@
+#include "material/driving_force_3d.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Eigenvalues>
+
+namespace ecm {
+
+namespace {
+
+// +1: all principal values >= 0; -1: all <= 0; 0: mixed signs. A symmetric tensor's
+// eigenvalues are all non-negative exactly when its three invariants are.
+int principalSigns(const Voigt6& s) {
+  const double i1 = s[0] + s[1] + s[2];
+  const double i2 = s[0] * s[1] + s[1] * s[2] + s[0] * s[2] - s[3] * s[3] - s[4] * s[4] - s[5] * s[5];
+  const double i3 = s[0] * (s[1] * s[2] - s[3] * s[3]) - s[5] * (s[5] * s[2] - s[3] * s[4]) +
+                    s[4] * (s[5] * s[3] - s[1] * s[4]);
+  if (i2 < 0.0) return 0;
+  if (i1 >= 0.0 && i3 >= 0.0) return 1;
+  if (i1 <= 0.0 && i3 <= 0.0) return -1;
+  return 0;
+}
+
+// sigma : a^-1 : sigma / 2 for the isotropic compliance, Eq. (12) with nothing split off.
+double wholeDrivingForce(const Voigt6& s, double e, double nu) {
+  const double tr = s[0] + s[1] + s[2];
+  const double ss = s.head<3>().squaredNorm() + 2.0 * s.tail<3>().squaredNorm();
+  return 0.5 / e * ((1.0 + nu) * ss - nu * tr * tr);
+}
+
+}  // namespace
+
+DrivingForce3 drivingForce3(const Voigt6& s, double e, double nu) {
+  DrivingForce3 y;
+  const int signs = principalSigns(s);
+  if (signs < 0) return y;
+  if (signs > 0) {
+    y.value = wholeDrivingForce(s, e, nu);
+    const double tr = s[0] + s[1] + s[2];
+    y.stressGradient.head<3>() = ((1.0 + nu) * s.head<3>().array() - nu * tr).matrix() / e;  // a^-1 sigma
+    y.stressGradient.tail<3>() = 2.0 * (1.0 + nu) / e * s.tail<3>();                          // engineering shears
+    return y;
+  }
+  const Eigen::SelfAdjointEigenSolver<Mat3> es(stressTensor(s));
+  const Vec3 p = es.eigenvalues();
+  y.value = drivingForceOfPrincipal(p[0], p[1], p[2], e, nu);
+  if (y.value == 0.0) return y;
+  const double zero = -1e-9 * p.cwiseAbs().maxCoeff();
+  const Vec3 pp = p.cwiseMax(0.0);
+  for (int i = 0; i < 3; ++i) {
+    if (p[i] < zero) continue;
+    const double dy = (pp[i] - nu * (pp.sum() - pp[i])) / e;
+    y.stressGradient += dy * normalProjector3(es.eigenvectors().col(i));
+  }
+  return y;
+}
+
+double drivingForceValue3(const Voigt6& s, double e, double nu) {
+  const int signs = principalSigns(s);
+  if (signs < 0) return 0.0;
+  if (signs > 0) return wholeDrivingForce(s, e, nu);
+  const Eigen::SelfAdjointEigenSolver<Mat3> es(stressTensor(s), Eigen::EigenvaluesOnly);
+  const Vec3 p = es.eigenvalues();
+  return drivingForceOfPrincipal(p[0], p[1], p[2], e, nu);
+}
+
+Principal3 largestPrincipal(const Voigt6& s) {
+  const Eigen::SelfAdjointEigenSolver<Mat3> es(stressTensor(s));
+  return {es.eigenvalues()[2], es.eigenvectors().col(2)};
+}
+
+}  // namespace ecm
