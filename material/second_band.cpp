@@ -188,8 +188,9 @@ UpdateResult TwoPhasePoint::updateTwoBands(BandState& first, BandState& second, 
     const Vec4 delta = sol.jumps - start;
     if (delta.norm() > kJumpCheck * bandWidth_ && !(bandHasFailed(first) && bandHasFailed(second))) {
       const Surface path[2] = {loading[0] ? surface[0] : frozen[0], loading[1] ? surface[1] : frozen[1]};
-      const int uniform = std::clamp(static_cast<int>(std::ceil(delta.norm() / (kJumpCheck * bandWidth_))), kJumpSamples,
-                                     kMaxPathSamples);
+      // (Clamped as a double before the cast: a huge jump's count does not fit an int.)
+      const int uniform = static_cast<int>(std::fmin(
+          std::fmax(std::ceil(delta.norm() / (kJumpCheck * bandWidth_)), double(kJumpSamples)), double(kMaxPathSamples)));
       std::vector<double> ts;
       for (int k = 1; k < uniform; ++k) ts.push_back(double(k) / uniform);
       for (double t = kFirstGeometricSample; t < 1.0 / uniform; t *= kGeometricRatio) ts.push_back(t);

@@ -1,6 +1,7 @@
 // Output folders, JSON summaries, gnuplot plots and the progress reporter.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -173,6 +174,20 @@ TEST(Progress, TerminalModeRedrawsInPlace) {
   const std::string s = captured(f);
   std::fclose(f);
   expectContains(s, "\r\033[Kmpm: done (100.0%)");
+}
+
+TEST(Progress, ANaNProgressCountsAsNone) {
+  // The bar's width is cast to an int: a NaN fraction there was undefined behaviour (the same
+  // pattern as the fuzzer's finding in the path's sample count); NaN now counts as 0 done.
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  {
+    Progress p(10.0, {"mpm", 0.0, f, true});
+    p.update(NAN);
+  }
+  const std::string s = captured(f);
+  std::fclose(f);
+  expectContains(s, "mpm: done (0.0%)");
 }
 
 TEST(Progress, Durations) {
