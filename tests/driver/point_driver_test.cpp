@@ -352,5 +352,26 @@ TEST(PointDriver, TheSecondBandsJumpBooksTheStoredEnergyItReleases) {
   EXPECT_NEAR(jump.dissipation, before - after, 1e-10);
 }
 
+TEST(PointDriver, OnlyMaximaOfTheLoadingBranchAreFlagged) {
+  // A uniaxial pull far past failure (E 25000, nu 0.15, f_t' 2.5, E_p 12, n 0.2, h 0.1 mm,
+  // H = 100 mm, eps_xx to 5e-2 in 20000 increments): the one maximum is the band's peak,
+  // 2.5241 MPa just after onset (nu > 0). Near failure the stress falls to ~3e-6 MPa by
+  // round-off, where main flagged five more "maxima" (rows 16912 to 17541).
+  PointScene s;
+  s.material = loadedFirstBandMaterial();
+  s.material.secondBand = SecondBandOption::Off;
+  s.effectiveSize = 100.0;
+  s.path = presetSegments(preset("uniaxial_tension", 5e-2, 20000), 0.15);
+  const PointRun run = runPoint(s);
+  ASSERT_TRUE(run.completed) << run.failure;
+  int maxima = 0;
+  for (const HistoryRow& r : run.history)
+    if (r.event & kPeakRow) {
+      ++maxima;
+      EXPECT_GT(r.stress[0], 2.5) << "row " << r.increment;
+    }
+  EXPECT_EQ(maxima, 1);
+}
+
 }  // namespace
 }  // namespace ecm::driver
