@@ -49,7 +49,9 @@ TEST(PointPlots, TheLockingPathPlotsSigYyAgainstEpsYyAndTheSecondBand) {
   EXPECT_EQ(specs[0].title, "locking-second-band: stress-strain (H = 2.5 mm)");
   EXPECT_TRUE(has(specs[0], "sig_yy against eps_yy"));
   for (const io::PlotSeries& p : specs[0].series)
-    if (p.title == "sig_yy against eps_yy") EXPECT_EQ(p.columns, "4:7");  // eps_yy, sig_yy of history.csv
+    if (p.title == "sig_yy against eps_yy") {
+      EXPECT_EQ(p.columns, "4:7");  // eps_yy, sig_yy of history.csv
+    }
   EXPECT_TRUE(has(specs[1], "second band: n2.sigma.n2 vs jump [u]_2.n2"));
 }
 
