@@ -1,5 +1,5 @@
 #pragma once
-// The plot of a field over the particles (damage_map.png): one square point per particle,
+// The plot of a field over the particles (damage_map.png): one filled square per particle,
 // coloured by the field, laid out for the domain's shape. A compact domain is drawn to scale; a
 // slender one (a bar 20 x 1000 mm) would be a few pixels wide to scale, so it is stretched
 // across the canvas, the title says so, and the colour bar keeps its own margin.
