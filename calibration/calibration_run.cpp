@@ -136,6 +136,7 @@ bool writeOutputs(const CalibrationResult& r, const std::filesystem::path& dir) 
   plot.title = title.str();
   plot.xLabel = "opening w (mm)";
   plot.yLabel = "stress {/Symbol s} (MPa)";
+  plot.enhancedLabels = true;  // the sigma of the y label
   plot.series.push_back({"softening.csv", "1:2", "", "model, Eq. (13)", "lines lw 2"});
   if (r.target) {
     io::CsvWriter csv(dir / "target.csv", {"w", "sigma"});

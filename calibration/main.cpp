@@ -69,6 +69,9 @@ int main(int argc, char** argv) {
   app.add_option("--name", name, "name of the written material (default calibrated)");
   app.add_option("--hypothesis", hypothesis, "plane_stress (default) | plane_strain, for the written material");
 
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return io::errorLine("ecm-calibrate", e.what()) + "Run with --help for more information.\n";
+  });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -80,7 +83,7 @@ int main(int argc, char** argv) {
     if (app.count(q.flag) > 0) cli.*q.member = values[q.key];
   if (app.count("--fit") > 0) {
     if (fit != "hordijk") {
-      std::cerr << "ecm-calibrate: error: --fit '" << fit << "' is not one of: hordijk (use --fit-csv FILE for measured points)\n";
+      io::printError("ecm-calibrate", "--fit '" + fit + "' is not one of: hordijk (use --fit-csv FILE for measured points)");
       return kExitBadInput;
     }
     cli.fit = fit;
@@ -96,20 +99,20 @@ int main(int argc, char** argv) {
     return run(cli, inputFile, running);
   } catch (const RegularisationError& e) {
     std::cerr.precision(10);
-    std::cerr << "ecm-calibrate: no softening modulus E_p exists: " << e.what() << "\n  H_crit = " << e.criticalSize
+    std::cerr << io::errorLine("ecm-calibrate", std::string("no softening modulus E_p exists: ") + e.what()) << "  H_crit = " << e.criticalSize
               << " mm\n  needed tensile strength = " << e.requiredStrength << " MPa\n";
     return kExitRunFailed;
   } catch (const io::InputError& e) {
-    std::cerr << e.what() << "\n";
+    io::printError("ecm-calibrate", e.what());
     return kExitBadInput;
   } catch (const CalibrationError& e) {
-    std::cerr << "ecm-calibrate: error: " << e.what() << "\n";
+    io::printError("ecm-calibrate", e.what());
     return kExitBadInput;
   } catch (const ParameterError& e) {
-    std::cerr << "ecm-calibrate: error: " << e.what() << "\n";
+    io::printError("ecm-calibrate", e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {  // io::OutputError among them
-    std::cerr << "ecm-calibrate: error: " << e.what() << "\n";
+    io::printError("ecm-calibrate", e.what());
     return running ? kExitRunFailed : kExitBadInput;
   }
 }

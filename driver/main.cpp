@@ -21,13 +21,17 @@ int main(int argc, char** argv) {
   app.add_option("scene", scene, "point scene (YAML)")->check(CLI::ExistingFile);
   app.add_option("--study", study, "snap-back study over effective sizes (YAML)")->check(CLI::ExistingFile);
   app.add_option("--out", out, "output folder (default out/point/<scene name> or out/snapback-study)");
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return ecm::io::errorLine("ecm-point", e.what()) + "Run with --help for more information.\n";
+  });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return ecm::io::commandLineStatus(app.exit(e));
   }
   if (scene.empty() == study.empty()) {
-    std::cerr << "ecm-point: give either a SCENE.yaml or --study STUDY.yaml\n" << app.help();
+    ecm::io::printError("ecm-point", "give either a SCENE.yaml or --study STUDY.yaml");
+    std::cerr << "Run with --help for more information.\n";
     return ecm::io::kExitBadInput;
   }
   bool running = false;  // input read and output folder ready: a failure from here on is the run's
@@ -76,12 +80,12 @@ int main(int argc, char** argv) {
                 << ")\n";
     std::cout << "outputs in " << dir.string() << "\n";
     if (!run.completed) {
-      std::cerr << "ecm-point: run stopped: " << run.failure << " (everything up to it is in " << dir.string() << ")\n";
+      ecm::io::printError("ecm-point", "run stopped: " + run.failure + " (everything up to it is in " + dir.string() + ")");
       return ecm::io::kExitRunFailed;
     }
     return ecm::io::kExitDone;
   } catch (const std::exception& e) {
-    std::cerr << "ecm-point: " << e.what() << "\n";
+    ecm::io::printError("ecm-point", e.what());
     return running ? ecm::io::kExitRunFailed : ecm::io::kExitBadInput;
   }
 }

@@ -123,10 +123,15 @@ class Runner {
     return best;
   }
 
+  // A maximum of the loading branch: above every stress of the run so far. Past the peak a
+  // softening band's stress only falls; a "maximum" there is round-off (docs/model.md).
+  bool onLoadingBranch(const Voigt& stress) const { return principalStresses(stress).first > highest_; }
+
   // A stress maximum inside a converged increment of a loading band (the nu > 0 band's traction
   // rises after onset before it softens) gets a row of its own: the increment's path is stable,
   // so opening control from its start traces it. The rest of the increment is then taken from
-  // the maximum. Returns false (nothing recorded) if there is none.
+  // the maximum. Returns false (nothing recorded) if there is none, or if it is not a maximum of
+  // the loading branch.
   bool peakInside(int k, const MixedTarget& t, const MaterialPoint& start, const StepOutcome& out) {
     if (!material_.enriched() || !start.band || !point_.band || !(point_.band->integrity < start.band->integrity))
       return false;
@@ -138,7 +143,7 @@ class Runner {
     for (int c = 0; c < 3; ++c) o.direction[c] = t.control[c] == Control::Strain ? t.strainIncrement[c] : 0.0;
     const std::optional<BranchState> peak = stressMaximum(o, start, principalStresses(stress_).first, point_.band->normalJump(),
                                                           principalStresses(out.result.stress).first, 1.0);
-    if (!peak) return false;
+    if (!peak || !onLoadingBranch(peak->out.step.result.stress)) return false;
     // The rest of the increment from the maximum; the original end stands if it fails.
     MixedTarget rest = t;
     for (int c = 0; c < 3; ++c)
@@ -523,6 +528,7 @@ class Runner {
       r.opening = scene_.effectiveSize * normalComponent(point_.strain - c * stress_, n);
     }
     run_.history.push_back(r);
+    highest_ = std::max(highest_, principalStresses(stress_).first);
     if (observe_) observe_(r, inc, total_);
   }
 
@@ -535,6 +541,7 @@ class Runner {
   MaterialPoint point_;
   Voigt stress_ = Voigt::Zero();
   double work_ = 0.0, dissipation_ = 0.0;
+  double highest_ = -INFINITY;  // the largest first principal stress of the rows so far (MPa)
   int increment_ = 0, total_ = 0;
   PointRun run_;
 };

@@ -1,5 +1,6 @@
 #include "driver/point_output.hpp"
 
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -96,32 +97,84 @@ nlohmann::json pointSummaryJson(const PointScene& scene, const PointRun& run) {
   return j;
 }
 
-void writePointPlots(const PointScene& scene, const std::filesystem::path& dir) {
+namespace {
+
+// A number as a person writes it: 10, 2.5, 0.001 (not 10.000000).
+std::string shortNumber(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+// gnuplot `using` parts of history.csv's columns (1-based, historyTable's order).
+constexpr const char* kEvent = "int($24)";
+// The row's dominant normal stress and its strain: sig_yy against eps_yy where |sig_yy| > |sig_xx|.
+constexpr const char* kDominantStrain = "(abs($7) > abs($6) ? $4 : $3)";
+constexpr const char* kDominantStress = "(abs($7) > abs($6) ? $7 : $6)";
+
+}  // namespace
+
+std::vector<io::PlotSpec> pointPlotSpecs(const PointScene& scene, const PointRun& run) {
+  unsigned events = 0;
+  bool secondBand = false;
+  Voigt largest = Voigt::Zero();
+  for (const HistoryRow& r : run.history) {
+    events |= r.event;
+    secondBand = secondBand || r.secondBand;
+    largest = largest.cwiseMax(r.stress.cwiseAbs());
+  }
+  const auto marker = [&](unsigned bit, const std::string& x, const std::string& y, const char* title, const char* style) {
+    std::string using_(1, '(');  // (built by appending: GCC 12 warns falsely, -Wrestrict, on "(" + s)
+    using_ += kEvent;
+    for (const std::string& part : {std::string(" & "), std::to_string(bit), std::string(" ? "), x, std::string(" : 1/0):"), y})
+      using_ += part;
+    return io::PlotSeries{"history.csv", using_, "", title, style};
+  };
+  // Each stress against its own strain (a path that holds eps_xx while it stretches eps_yy
+  // shows its sig_yy against eps_yy), the components that are never loaded left out.
   io::PlotSpec ss;
-  ss.title = scene.name + ": stress-strain (H = " + std::to_string(scene.effectiveSize) + " mm)";
-  ss.xLabel = "eps_xx";
+  ss.title = scene.name + ": stress-strain (H = " + shortNumber(scene.effectiveSize) + " mm)";
+  ss.xLabel = "strain: each stress against its own (eps_xx, eps_yy, gamma_xy)";
   ss.yLabel = "stress (MPa)";
-  ss.series = {{"history.csv", "3:6", "", "sig_xx", "lines lw 2"},
-               {"history.csv", "3:7", "", "sig_yy", "lines"},
-               {"history.csv", "3:8", "", "sig_xy", "lines"},
-               {"history.csv", "(int($24) & 1 ? $3 : 1/0):6", "", "onset", "points pt 7 ps 1.5"},
-               {"history.csv", "(int($24) & 4 ? $3 : 1/0):6", "", "stress maximum inside an increment", "points pt 9 ps 1.5"},
-               {"history.csv", "(int($24) & 2 ? $3 : 1/0):6", "", "last stable state before a snap-back", "points pt 6 ps 2"}};
-  io::renderPlot(ss, dir / "stress_strain.png");
+  const double loaded = 1e-6 * largest.maxCoeff();
+  const char* names[3] = {"sig_xx against eps_xx", "sig_yy against eps_yy", "sig_xy against gamma_xy"};
+  for (int c = 0; c < 3; ++c)
+    if (c == 0 || largest[c] > loaded)
+      ss.series.push_back({"history.csv", std::to_string(3 + c) + ":" + std::to_string(6 + c), "", names[c],
+                           c == 0 ? "lines lw 2" : "lines"});
+  // Markers only for the rows that occur, on the curve of the row's dominant normal stress.
+  if (events & kOnsetRow) ss.series.push_back(marker(kOnsetRow, kDominantStrain, kDominantStress, "onset", "points pt 7 ps 1.5"));
+  if (events & kPeakRow)
+    ss.series.push_back(marker(kPeakRow, kDominantStrain, kDominantStress, "stress maximum inside an increment", "points pt 9 ps 1.5"));
+  if (events & kLastStableRow)
+    ss.series.push_back(
+        marker(kLastStableRow, kDominantStrain, kDominantStress, "last stable state before a snap-back", "points pt 6 ps 2"));
+
   io::PlotSpec to;
-  to.title = scene.name + ": traction-opening of the band";
-  to.xLabel = "inelastic opening w = h (eps_L - C sigma)_nn (mm)";
-  to.yLabel = "normal traction n.sigma.n (MPa)";
+  to.title = scene.name + ": traction-opening of the band" + (secondBand ? "s" : "");
+  to.xLabel = secondBand ? "inelastic opening w = h (eps_L - C sigma)_nn, jump [u].n (mm)"
+                         : "inelastic opening w = h (eps_L - C sigma)_nn (mm)";
+  to.yLabel = secondBand ? "normal traction on the band n.sigma.n (MPa)" : "normal traction n.sigma.n (MPa)";
   to.series = {{"history.csv", "($9 > 0 ? $13 : 1/0):14", "", "traction vs opening w", "lines lw 2"},
-               {"history.csv", "($9 > 0 ? $11 : 1/0):14", "", "traction vs jump [u].n", "lines dt 2"},
-               {"history.csv", "(int($24) & 2 ? $13 : 1/0):14", "", "last stable state before a snap-back", "points pt 6 ps 2"}};
-  io::renderPlot(to, dir / "traction_opening.png");
+               {"history.csv", "($9 > 0 ? $11 : 1/0):14", "", "traction vs jump [u].n", "lines dt 2"}};
+  if (secondBand)  // history.csv's second-band columns: damage_2 25, jump_n_2 26, normal_x_2 28, normal_y_2 29
+    to.series.push_back({"history.csv", "($25 > 0 ? $26 : 1/0):($28*$28*$6 + $29*$29*$7 + 2*$28*$29*$8)", "",
+                         "second band: n2.sigma.n2 vs jump [u]_2.n2", "lines lw 2"});
+  if (events & kLastStableRow)
+    to.series.push_back(marker(kLastStableRow, "$13", "14", "last stable state before a snap-back", "points pt 6 ps 2"));
+  return {ss, to};
+}
+
+void writePointPlots(const PointScene& scene, const PointRun& run, const std::filesystem::path& dir) {
+  const std::vector<io::PlotSpec> specs = pointPlotSpecs(scene, run);
+  io::renderPlot(specs[0], dir / "stress_strain.png");
+  io::renderPlot(specs[1], dir / "traction_opening.png");
 }
 
 void writePointOutputs(const PointScene& scene, const PointRun& run, const std::filesystem::path& dir) {
   writeHistoryCsv(run, dir / "history.csv", scene.material.secondBand != SecondBandOption::Off);
   io::writeJsonSummary(pointSummaryJson(scene, run), dir / "summary.json");
-  writePointPlots(scene, dir);
+  writePointPlots(scene, run, dir);
 }
 
 }  // namespace ecm::driver

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "driver/point_driver.hpp"
+#include "io/gnuplot.hpp"
 
 namespace ecm::driver {
 
@@ -20,7 +21,11 @@ struct HistoryTable {
 HistoryTable historyTable(const PointRun& run, bool secondBandColumns = false);
 void writeHistoryCsv(const PointRun& run, const std::filesystem::path& file, bool secondBandColumns = false);
 nlohmann::json pointSummaryJson(const PointScene& scene, const PointRun& run);
-void writePointPlots(const PointScene& scene, const std::filesystem::path& dir);
+// The two plots of a point run (stress_strain.png, traction_opening.png): each stress against its
+// own strain, markers only for the kinds of event rows the run has, and the second band's
+// traction against its jump once it has opened.
+std::vector<io::PlotSpec> pointPlotSpecs(const PointScene& scene, const PointRun& run);
+void writePointPlots(const PointScene& scene, const PointRun& run, const std::filesystem::path& dir);
 // All of the above into `dir`.
 void writePointOutputs(const PointScene& scene, const PointRun& run, const std::filesystem::path& dir);
 

@@ -251,9 +251,9 @@ SnapBackStudyResult runSnapBackStudy(const SnapBackStudy& study, const std::file
   to.xRange = "[0:" + std::to_string(std::min(study.opening, 0.3)) + "]";
   for (size_t i = 0; i < enrichedDirs.size(); ++i)
     to.series.push_back({enrichedDirs[i] + "/history.csv", "($9 > 0 ? $13 : 1/0):14", "",
-                         "enriched H = " + tag(result.rows[i].effectiveSize), "lines lw 2"});
+                         "enriched H = " + tag(result.rows[i].effectiveSize) + " mm", "lines lw 2"});
   for (const std::string& d : smearedDirs)
-    to.series.push_back({d + "/history.csv", "($9 > 0 ? $13 : 1/0):14", "", "smeared " + d.substr(9), "lines dt 2"});
+    to.series.push_back({d + "/history.csv", "($9 > 0 ? $13 : 1/0):14", "", "smeared H = " + d.substr(9) + " mm", "lines dt 2"});
   io::renderPlot(to, dir / "traction_opening.png");
   io::PlotSpec ss;
   ss.title = "macro stress-strain of the enriched point (opening control): snap-back beyond h(E+E_p)/E_p";
@@ -264,7 +264,7 @@ SnapBackStudyResult runSnapBackStudy(const SnapBackStudy& study, const std::file
   const std::string scale = std::to_string(e / ft);
   for (size_t i = 0; i < enrichedDirs.size(); ++i)
     ss.series.push_back({enrichedDirs[i] + "/history.csv", "($3*" + scale + "):6", "",
-                         "H = " + tag(result.rows[i].effectiveSize), "lines lw 2"});
+                         "H = " + tag(result.rows[i].effectiveSize) + " mm", "lines lw 2"});
   io::renderPlot(ss, dir / "stress_strain.png");
   return result;
 }

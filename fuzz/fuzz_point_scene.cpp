@@ -11,7 +11,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   ecm::driver::PointScene scene;
   try {
-    scene = ecm::readPointScene(ecm::io::parseYaml(text, "fuzz.yaml"));
+    scene = ecm::driver::readPointScene(ecm::io::parseYaml(text, "fuzz.yaml"));
   } catch (const ecm::io::InputError&) {
     return 0;
   }

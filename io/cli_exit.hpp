@@ -8,6 +8,12 @@
 //     range, a bad command line, an output folder that cannot be used;
 //   3 stopped on request with a checkpoint (ecm-mpm: a signal or --max-steps): resume it.
 // Free of CLI11: each main catches CLI::ParseError and passes app.exit(e) to commandLineStatus.
+// Every error message a tool prints has one form, errorLine(): "ecm-mpm: error: REASON" (an
+// input's reason is "FILE:LINE: reason"); CLI11's own messages take it through
+// app.failure_message(...).
+#include <cstdio>
+#include <string>
+#include <string_view>
 
 namespace ecm::io {
 
@@ -18,5 +24,13 @@ inline constexpr int kExitDone = 0, kExitRunFailed = 1, kExitBadInput = 2, kExit
 // non-zero for every error (105 for a missing file of CLI::ExistingFile, 106 for a missing
 // argument, ...); every error is bad input.
 constexpr int commandLineStatus(int cli11ExitCode) { return cli11ExitCode == 0 ? kExitDone : kExitBadInput; }
+
+// "TOOL: error: MESSAGE\n".
+inline std::string errorLine(std::string_view tool, std::string_view message) {
+  return std::string(tool) + ": error: " + std::string(message) + "\n";
+}
+inline void printError(std::string_view tool, std::string_view message) {
+  std::fputs(errorLine(tool, message).c_str(), stderr);
+}
 
 }  // namespace ecm::io

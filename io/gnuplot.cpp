@@ -57,8 +57,9 @@ std::string gnuplotScript(const PlotSpec& spec, const std::string& pngName) {
   s << "set key autotitle columnhead\n";
   s << "set grid\n";
   if (!spec.title.empty()) s << "set title " << quote(spec.title) << " noenhanced\n";
-  if (!spec.xLabel.empty()) s << "set xlabel " << quote(spec.xLabel) << "\n";
-  if (!spec.yLabel.empty()) s << "set ylabel " << quote(spec.yLabel) << "\n";
+  const char* labels = spec.enhancedLabels ? "\n" : " noenhanced\n";
+  if (!spec.xLabel.empty()) s << "set xlabel " << quote(spec.xLabel) << labels;
+  if (!spec.yLabel.empty()) s << "set ylabel " << quote(spec.yLabel) << labels;
   if (spec.logX) s << "set logscale x\n";
   if (spec.logY) s << "set logscale y\n";
   if (!spec.xRange.empty()) s << "set xrange " << spec.xRange << "\n";
@@ -73,7 +74,7 @@ std::string gnuplotScript(const PlotSpec& spec, const std::string& pngName) {
     } else {
       s << quote(p.dataFile) << " using " << p.columns;
     }
-    s << " title " << quote(p.title) << " with " << p.style;
+    s << " title " << quote(p.title) << " noenhanced with " << p.style;
   }
   s << "\n";
   return s.str();

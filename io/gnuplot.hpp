@@ -21,6 +21,9 @@ struct PlotSpec {
   std::string title;
   std::string xLabel;
   std::string yLabel;
+  // Labels, titles and legend entries are plain text ("sig_xx" stays sig_xx); a spec whose axis
+  // labels use gnuplot's enhanced markup ("{/Symbol s}") sets this. Legend entries stay plain.
+  bool enhancedLabels = false;
   bool logX = false;
   bool logY = false;
   std::string xRange;                  // e.g. "[0:0.3]"; empty = automatic

@@ -39,7 +39,7 @@ double Progress::seconds(Clock::time_point t) const { return std::chrono::durati
 
 void Progress::update(double done) {
   if (finished_) return;
-  done_ = std::clamp(done, 0.0, total_);
+  done_ = done >= 0.0 ? std::min(done, total_) : 0.0;  // (NaN -> 0: the bar's width is cast to an int)
   const Clock::time_point now = Clock::now();
   const double sinceLast = std::chrono::duration<double>(now - lastPrint_).count();
   if (sinceLast < (terminal_ ? 0.1 : options_.interval)) return;

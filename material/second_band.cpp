@@ -80,6 +80,22 @@ Tangent TwoPhasePoint::consistentTangent(const BandState& first, const BandState
   return a / bulk * s;  // Eq. (10)
 }
 
+double TwoPhasePoint::storedEnergy(const BandState& first, const BandState* second, const Voigt& strain) const {
+  const Tangent& a = stiffness();
+  const BandState* bands[2] = {&first, second};
+  double bandEnergy = 0.0, fractions = 0.0;
+  Voigt bulkStrain = strain;
+  for (const BandState* b : bands) {
+    if (!b) continue;
+    const Voigt bandStrain = b->onsetStrain + jumpToStrain(b->crackNormal) * b->jump / bandWidth_;  // Eq. (3)
+    bandEnergy += b->volumeFraction * 0.5 * b->integrity * bandStrain.dot(a * bandStrain);       // Eq. (11)
+    bulkStrain -= b->volumeFraction * bandStrain;
+    fractions += b->volumeFraction;
+  }
+  bulkStrain /= 1.0 - fractions;  // Eq. (2)
+  return (1.0 - fractions) * 0.5 * bulkStrain.dot(a * bulkStrain) + bandEnergy;
+}
+
 Voigt TwoPhasePoint::stress(const BandState& first, const BandState& second, const Voigt& strain) const {
   const Surface frozen[2] = {frozenAt(first.integrity), frozenAt(second.integrity)};
   Vec4 jumps;
@@ -188,8 +204,9 @@ UpdateResult TwoPhasePoint::updateTwoBands(BandState& first, BandState& second, 
     const Vec4 delta = sol.jumps - start;
     if (delta.norm() > kJumpCheck * bandWidth_ && !(bandHasFailed(first) && bandHasFailed(second))) {
       const Surface path[2] = {loading[0] ? surface[0] : frozen[0], loading[1] ? surface[1] : frozen[1]};
-      const int uniform = std::clamp(static_cast<int>(std::ceil(delta.norm() / (kJumpCheck * bandWidth_))), kJumpSamples,
-                                     kMaxPathSamples);
+      // (Clamped as a double before the cast: a huge jump's count does not fit an int.)
+      const int uniform = static_cast<int>(std::fmin(
+          std::fmax(std::ceil(delta.norm() / (kJumpCheck * bandWidth_)), double(kJumpSamples)), double(kMaxPathSamples)));
       std::vector<double> ts;
       for (int k = 1; k < uniform; ++k) ts.push_back(double(k) / uniform);
       for (double t = kFirstGeometricSample; t < 1.0 / uniform; t *= kGeometricRatio) ts.push_back(t);
@@ -413,6 +430,33 @@ UpdateResult TwoPhasePoint::updateCracked(BandState& first, BandState* second, V
   }
   BandState band = hi.band;
   Voigt s = hi.strain;
+  // Does the band open continuously? Where the first band still carries traction, the second
+  // band's Y may start above F(0); its damage then catches up at the trigger's strain, a jump
+  // with no continuous branch: a snap-back. Released, it books the stored energy the jump
+  // releases, psi before minus psi after at the same strain (docs/model.md, "A second band").
+  double jumpEnergy = 0.0;
+  bool jumped = false;
+  {
+    BandState landedFirst = band, landedSecond = opened;
+    Voigt at = s;
+    UpdateOptions land = options;
+    land.snapBack = SnapBackPolicy::Stop;
+    const UpdateResult landed = updateTwoBands(landedFirst, landedSecond, at, Voigt::Zero(), land);
+    if (landed.converged() && (landed.stress - hi.r.stress).norm() > twoBandTolerance(landedFirst, landedSecond, at)) {
+      if (options.snapBack != SnapBackPolicy::Release) {
+        first = startBand;
+        strain = startStrain;
+        UpdateResult snap;
+        snap.status = UpdateStatus::SnapBack;
+        snap.iterations = hi.r.iterations + landed.iterations;
+        return snap;
+      }
+      jumpEnergy = std::max(0.0, storedEnergy(band, &opened, s) - storedEnergy(landedFirst, &landedSecond, at));
+      band = landedFirst;
+      opened = landedSecond;
+      jumped = true;
+    }
+  }
   UpdateResult rest = updateTwoBands(band, opened, s, (1.0 - alpha) * increment, options);
   if (!rest.converged()) {
     first = startBand;
@@ -422,9 +466,9 @@ UpdateResult TwoPhasePoint::updateCracked(BandState& first, BandState* second, V
   first = band;
   strain = s;
   secondOnset = opened;
-  rest.dissipation += hi.r.dissipation;
+  rest.dissipation += hi.r.dissipation + jumpEnergy;
   rest.iterations += hi.r.iterations;
-  rest.released = rest.released || hi.r.released;
+  rest.released = rest.released || hi.r.released || jumped;
   return rest;
 }
 

@@ -341,8 +341,9 @@ std::optional<double> TwoPhasePoint::firstUnstableOnPath(const BandState& b, con
   // Samples: every kJumpCheck h (at least kJumpSamples, at most kMaxPathSamples), and
   // geometrically closer towards the start, where the softening branch turns fastest.
   const double length = delta.norm();
-  const int uniform = std::clamp(static_cast<int>(std::ceil(length / (kJumpCheck * bandWidth_))), kJumpSamples,
-                                 kMaxPathSamples);
+  // (Clamped as a double before the cast: a huge jump's count does not fit an int; NaN gives the fewest.)
+  const int uniform = static_cast<int>(std::fmin(
+      std::fmax(std::ceil(length / (kJumpCheck * bandWidth_)), double(kJumpSamples)), double(kMaxPathSamples)));
   std::vector<double> ts;
   ts.reserve(uniform + 400);
   for (int k = 0; k <= uniform; ++k) ts.push_back(double(k) / uniform);

@@ -179,6 +179,11 @@ class TwoPhasePoint {
   Tangent consistentTangent(const BandState& first, const BandState& second, const Mat4& jacobian) const;
   // The stress of a two-band point at its committed state.
   Voigt stress(const BandState& first, const BandState& second, const Voigt& strain) const;
+  // The elastic energy a cracked point stores per unit volume (MPa) at a committed state: the
+  // bulk's (1 - f1 - f2) 1/2 eps_b : a : eps_b and each band's f_i 1/2 x_i eps_Li : a : eps_Li
+  // (Eqs. (1)-(4), (11)); `second` is nullptr for one band. What a jump at fixed strain
+  // releases (docs/model.md, "A second band").
+  double storedEnergy(const BandState& first, const BandState* second, const Voigt& strain) const;
 
   // Snap-back release: at the end strain of an increment whose loading branch turned back, the
   // band's damage grows at fixed strain until traction continuity (6) holds with consistent

@@ -76,9 +76,9 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output,--out", outDir, "output folder (default: SCENE-NAME-out next to the working folder)");
   app.add_option("--restart", restartDir,
                  "continue the run of this output folder from its checkpoint.bin (with the same scene file)");
-  app.add_option("-t,--threads", options.threads, "OpenMP threads (0: default)")->check(CLI::NonNegativeNumber);
+  app.add_option("-t,--threads", options.threads, "OpenMP threads (0: default)")->check(CLI::Range(0, 4096));
   app.add_option("--max-steps", options.maxSteps, "stop with a checkpoint once the run has made N steps (from t = 0)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1L, 1'000'000'000'000L));
   app.add_option("--preset", preset,
                  ecm::mpm::presetNames() + ": particles per cell, shape function, scheme and CFL from the measured "
                  "speed/accuracy presets (mpm/scene/presets.hpp), replacing the scene's")
@@ -86,6 +86,9 @@ int main(int argc, char** argv) {
   app.add_flag("--no-vtu", noVtu, "do not write VTU particle snapshots");
   app.add_flag("--no-plot", noPlot, "do not render the load-displacement PNG");
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return ecm::io::errorLine("ecm-mpm", e.what()) + "Run with --help for more information.\n";
+  });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -98,8 +101,8 @@ int main(int argc, char** argv) {
     if (!restartDir.empty()) {
       const auto normal = [](const std::string& p) { return std::filesystem::path(p).lexically_normal(); };
       if (!outDir.empty() && normal(outDir) != normal(restartDir)) {
-        std::fprintf(stderr, "error: --restart %s continues that folder; --out %s names another one\n",
-                     restartDir.c_str(), outDir.c_str());
+        ecm::io::printError("ecm-mpm", "--restart " + restartDir + " continues that folder; --out " + outDir +
+                                           " names another one");
         return ecm::io::kExitBadInput;
       }
       outDir = restartDir;
@@ -127,7 +130,7 @@ int main(int argc, char** argv) {
       return ecm::io::kExitStopped;
     }
     if (!r.completed) {
-      std::fprintf(stderr, "error: %s\n", r.error.c_str());
+      ecm::io::printError("ecm-mpm", r.error);
       if (!r.checkpoint.empty())
         std::fprintf(stderr, "the last checkpoint is %s (resume with: %s)\n", r.checkpoint.string().c_str(),
                      options.resumeCommand.c_str());
@@ -135,13 +138,13 @@ int main(int argc, char** argv) {
     }
     return ecm::io::kExitDone;
   } catch (const ecm::io::InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    ecm::io::printError("ecm-mpm", e.what());
   } catch (const ecm::io::OutputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    ecm::io::printError("ecm-mpm", e.what());
   } catch (const ecm::mpm::CheckpointError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    ecm::io::printError("ecm-mpm", e.what());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s: %s\n", scenePath.c_str(), e.what());
+    ecm::io::printError("ecm-mpm", scenePath + ": " + e.what());
   }
   return ecm::io::kExitBadInput;  // runScene reports a failure during the run in its result
 }

@@ -10,7 +10,11 @@ cd "$(dirname "$0")/.."
 out=${1:-results/paper}
 ./scripts/setup.sh
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build -j2
+# Only the tools it runs (not the tests, benchmarks and the Python module: scripts/test.sh builds
+# those); ecm-mpm where the tree has it.
+targets=(ecm-calibrate ecm-point)
+if [[ -f mpm/CMakeLists.txt ]]; then targets+=(ecm-mpm); fi
+cmake --build build -j2 --target "${targets[@]}"
 mkdir -p "$out"
 parts=()
 

@@ -19,11 +19,14 @@ int main(int argc, char** argv) {
   bool list = false, inProcess = false, quiet = false, resume = false;
   app.add_option("study", studyPath, "study file (YAML)")->required()->check(CLI::ExistingFile);
   app.add_option("-o,--out", outDir, "output folder (default: out/STUDY-NAME)");
-  app.add_option("-t,--threads", options.threads, "OpenMP threads of each MPM run (default 2)")->check(CLI::PositiveNumber);
+  app.add_option("-t,--threads", options.threads, "OpenMP threads of each MPM run (default 2)")->check(CLI::Range(1, 4096));
   app.add_flag("--list", list, "print the planned runs (checked like scenes) and stop");
   app.add_flag("--resume", resume, "reuse the MPM runs of DIR whose scene is unchanged (an interrupted study goes on)");
   app.add_flag("--in-process", inProcess, "run MPM scenes in this process (no per-run peak memory)");
   app.add_flag("-q,--quiet", quiet, "no line per run on stderr");
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return ecm::io::errorLine("ecm-study", e.what()) + "Run with --help for more information.\n";
+  });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -61,12 +64,12 @@ int main(int argc, char** argv) {
                  options.outputDir.string().c_str());
     return r.allCompleted ? ecm::io::kExitDone : ecm::io::kExitRunFailed;
   } catch (const ecm::io::InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    ecm::io::printError("ecm-study", e.what());
     return ecm::io::kExitBadInput;
   } catch (const ecm::io::OutputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    ecm::io::printError("ecm-study", e.what());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s: %s\n", studyPath.c_str(), e.what());
+    ecm::io::printError("ecm-study", studyPath + ": " + e.what());
   }
   return running ? ecm::io::kExitRunFailed : ecm::io::kExitBadInput;
 }

@@ -3,6 +3,7 @@
 // Units: mm, N, MPa.
 #include <cstdio>
 
+#include "ecm/version.hpp"
 #include "material/material.hpp"
 
 int main() {
@@ -19,6 +20,7 @@ int main() {
   ecm::MaterialPoint point;
   const auto size = ecm::EffectiveSize::fixed(10.0);  // H (mm): f = h / H = 0.005
   double dissipated = 0.0;                             // N mm / mm^3
+  std::fprintf(stderr, "ecm %s\n", ecm::kVersion);
   std::printf("%12s %12s %10s %12s\n", "eps_xx", "sigma_xx", "damage", "dissipated");
   for (int step = 1; step <= 300; ++step) {
     const double rate = step <= 250 ? 1e-6 : -1e-6;  // load, then unload

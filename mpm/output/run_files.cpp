@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "io/gnuplot.hpp"
+#include "io/particle_map.hpp"
 #include "io/output_error.hpp"
 #include "mpm/output/checkpoint_codec.hpp"
 
@@ -109,19 +110,13 @@ void writeParticles(const Particles& p, const std::filesystem::path& path) {
   if (ec) throw io::OutputError(path, "rename from " + tmp.filename().string() + " failed: " + ec.message());
 }
 
-// The damage map of particles_final.csv: one square point per particle, coloured by damage.
+// The damage map of particles_final.csv: one square point per particle, coloured by damage, laid
+// out for the grid's shape (io/particle_map.hpp: a slender bar is stretched, not a sliver).
 void plotDamage(const Scene& scene, std::size_t particles, const std::filesystem::path& dir) {
-  const double size = std::clamp(0.35 * std::sqrt(25000.0 / static_cast<double>(std::max<std::size_t>(particles, 1))), 0.05, 1.0);
-  io::PlotSpec spec;
-  spec.title = scene.name + ": damage at the end";
-  spec.xLabel = "x (mm)";
-  spec.yLabel = "y (mm)";
-  spec.width = 800;
-  spec.height = 760;
-  spec.functions = {"set size ratio -1", "set cbrange [0:1]", "set cblabel 'damage'",
-                    "set palette defined (0 '#f2f2f2', 0.3 '#9ecae1', 0.7 '#de2d26', 1 '#67000d')", "unset grid"};
-  spec.series.push_back({"particles_final.csv", "1:2:3", "", "", "points pt 5 ps " + std::to_string(size) + " lc palette"});
-  io::renderPlot(spec, dir / "damage_map.png");
+  const Vec2 extent = scene.grid.extent();
+  io::renderPlot(io::particleMapSpec({scene.name + ": damage at the end", "particles_final.csv", "1:2:3", "damage",
+                                      extent[0], extent[1], particles}),
+                 dir / "damage_map.png");
 }
 
 }  // namespace ecm::mpm

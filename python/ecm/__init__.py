@@ -29,11 +29,20 @@ from .mpm_output import MpmOutput, read_mpm_output
 __all__ = ["STATUS", "BandState", "CalibrationError", "CheckpointError", "InputError", "Material", "OutputError",
            "ParameterError", "PointArray", "PointState", "UpdateResult", "__version__", "fracture_energy",
            "softening_modulus", "PointRun", "run_point", "run_point_3d", "snapback_study", "calibrate", "fit_softening",
-           "run_scene", "MpmOutput", "read_mpm_output"]
+           "run_scene", "load_scene", "MpmOutput", "read_mpm_output"]
 
 
 def _path_or_dict(x):
     return os.fspath(x) if isinstance(x, os.PathLike) else x
+
+
+def load_scene(path):
+    """Reads a YAML input file of the tools (an ecm-mpm or ecm-point scene, a study, a material)
+    as the tools read it, into a dict to change and pass to run_scene, run_point, ...: numbers are
+    numbers, strings strings, with YAML's rules as the tools apply them ('1e-6' is a number, which
+    PyYAML reads as a string), and relative `file:` references made absolute. Errors in a dict name
+    the key path ("<dict>: key 'solver.tolerance': ...")."""
+    return _ecm._load_yaml(os.fspath(path))
 
 
 @dataclass
@@ -98,9 +107,14 @@ def fit_softening(w, traction, out=None, **keys):
 def run_scene(scene, out, threads=0, preset=None, snapshots=True, plot=True, restart=False, max_steps=0,
               progress=None):
     """Runs an ecm-mpm scene (a YAML file's path or a dict) into the folder `out`, as ecm-mpm does.
-    progress(time, end_time, step) is called at every history row; returning False (or raising,
-    or Ctrl-C) stops the run with a checkpoint (resume with restart=True). The GIL is released
-    while the run goes on. Returns a dict: completed, stopped, error, steps, particles,
-    peak_load_N, wall_time_s, checkpoint; read the folder with read_mpm_output(out)."""
+    progress(time, end_time, step) is called at every history row (time and end_time in s; the
+    pseudo-time of an implicit scene); returning False (or raising, or Ctrl-C) stops the run with a
+    checkpoint (resume with restart=True). A progress that is not callable is refused before the
+    run (TypeError). The GIL is released while the run goes on. Returns a dict of the same keys
+    for every scheme: status ("completed", "stopped" or "failed"), completed, stopped, error (the
+    failure's message; None unless failed), steps, particles, peak_load_N (N), wall_time_s (s),
+    checkpoint (path or None); read the folder with read_mpm_output(out)."""
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be callable as progress(time, end_time, step) or None, got {type(progress).__name__}")
     return _ecm._run_scene(_path_or_dict(scene), os.fspath(out), threads, preset, snapshots, plot, restart, max_steps,
                            progress)

@@ -27,6 +27,11 @@ class MpmOutput:
 
 
 def read_mpm_output(folder):
+    """Reads an ecm-mpm output folder (a path) into an MpmOutput: history (history.csv: time in s,
+    displacements in mm, loads in N, energies in N mm), particles (particles_final.csv: positions
+    in mm, stresses in MPa, openings in mm; {} if the run wrote none) and summary (summary.json).
+    Column names and units are those of the files' headers (mpm/README.md). Raises
+    FileNotFoundError if the folder has no summary.json."""
     folder = os.fspath(folder)
     summary_path = os.path.join(folder, "summary.json")
     if not os.path.exists(summary_path):

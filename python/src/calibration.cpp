@@ -28,7 +28,7 @@ void bindCalibration(py::module_& m) {
          const std::optional<std::vector<double>>& traction, const std::optional<std::filesystem::path>& out) {
         calibration::CalibrationInput in;
         if (file) in = calibration::readCalibrationInput(*file);
-        if (!keys.empty()) calibration::overlay(in, calibration::readCalibrationInput(io::parseYaml(yamlText(keys), "<keywords>")));
+        if (!keys.empty()) calibration::overlay(in, readDict(keys, "<keywords>", [](const io::YamlMap& m) { return calibration::readCalibrationInput(m); }));
         if (w || traction) {
           if (!w || !traction) throw py::value_error("give both w and traction");
           in.fitPoints = calibration::TargetCurve{"points given in code", *w, *traction};

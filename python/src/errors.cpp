@@ -20,10 +20,23 @@ void bindErrors(py::module_& m) {
   static py::exception<calibration::CalibrationError> calibrationError(m, "CalibrationError", PyExc_ValueError);
   static py::exception<io::OutputError> outputError(m, "OutputError", PyExc_OSError);
   static py::exception<mpm::CheckpointError> checkpointError(m, "CheckpointError", PyExc_RuntimeError);
+  inputError.attr("__doc__") =
+      "Bad input (a ValueError): a key or value of a file, dict or keywords, as 'FILE:LINE: reason' for files and "
+      "'<dict>: key 'a.b': reason' for dicts; the message the tools print after 'error: '.";
+  parameterError.attr("__doc__") =
+      "A parameter out of its range given in code (a ValueError), naming the parameter, its value and the range.";
+  calibrationError.attr("__doc__") =
+      "A calibration that cannot be made (a ValueError): e.g. no E_p dissipates G_F for the given n, or an element "
+      "size above H_crit for the crack-band regularisation.";
+  outputError.attr("__doc__") = "An output folder or file that could not be written (an OSError).";
+  checkpointError.attr("__doc__") =
+      "A checkpoint that cannot be used for a restart (a RuntimeError): missing, damaged, or of another scene.";
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const io::InputError& e) {
+      inputError(e.what());
+    } catch (const DictInputError& e) {
       inputError(e.what());
     } catch (const io::ValueError& e) {
       inputError(e.what());

@@ -7,6 +7,8 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <cmath>
+#include <sstream>
 #include <vector>
 
 #include "io/material_yaml.hpp"
@@ -31,13 +33,61 @@ UpdateOptions optionsOf(bool tangent, const std::string& snapBack, int substepLe
   return o;
 }
 
-EffectiveSize sizeOf(double effectiveSize) {
-  if (!(effectiveSize > 0.0)) throw py::value_error("effective size H must be > 0 mm");
+std::string number(double v) {
+  std::ostringstream o;
+  o.precision(17);
+  o << v;
+  return o.str();
+}
+
+// The checks of a state given from Python (the C++ update trusts its caller): every number
+// finite, a unit crack normal, integrity x = 1 - D in (0, 1], f = h/H in (0, 1 / (1 + 1e-6)]
+// (H >= h (1 + 1e-6), docs/model.md "The smallest effective size").
+void checkFinite(const auto& v, const std::string& what) {
+  if (!v.allFinite()) throw py::value_error(what + " must be finite");
+}
+void checkIntegrity(double x, const std::string& what) {
+  if (!(x > 0.0 && x <= 1.0)) throw py::value_error(what + " (1 - D) must be in (0, 1], got " + number(x));
+}
+void checkNormal(const Vec2& n, const std::string& what) {
+  if (!n.allFinite() || !(std::abs(n.norm() - 1.0) <= 1e-6))
+    throw py::value_error(what + " must be a unit vector, got [" + number(n[0]) + ", " + number(n[1]) + "]");
+}
+void checkVolumeFraction(double f, const std::string& what) {
+  if (!(f > 0.0 && f <= 1.0 / (1.0 + kMinimumSizeMargin)))
+    throw py::value_error(what + " (f = h/H) must be in (0, 1/(1 + 1e-6)], got " + number(f));
+}
+void checkBand(const BandState& b, const std::string& what) {
+  checkNormal(b.crackNormal, what + ".crack_normal");
+  checkFinite(b.jump, what + ".jump");
+  checkFinite(b.onsetStrain, what + ".onset_strain");
+  checkIntegrity(b.integrity, what + ".integrity");
+  checkVolumeFraction(b.volumeFraction, what + ".volume_fraction");
+}
+void checkPoint(const MaterialPoint& p) {
+  checkFinite(p.strain, "PointState.strain");
+  checkIntegrity(p.integrity, "PointState.integrity");
+  if (p.band) checkBand(*p.band, "PointState.band");
+  if (p.secondBand) {
+    if (!p.band) throw py::value_error("PointState.second_band needs a first band");
+    checkBand(*p.secondBand, "PointState.second_band");
+  }
+}
+
+// H (mm) for this material: finite, > 0, and for the enriched model at least its smallest size.
+EffectiveSize sizeOf(const Material& mat, double effectiveSize) {
+  if (!(effectiveSize > 0.0 && std::isfinite(effectiveSize)))
+    throw py::value_error("effective size H must be a finite number > 0 mm, got " + number(effectiveSize));
+  const MaterialParams& p = mat.params();
+  if (p.model == ModelKind::Enriched)
+    if (const std::string problem = effectiveSizeProblem(effectiveSize, p.bandWidth, p.secondBand == SecondBandOption::Off ? 1 : 2);
+        !problem.empty())
+      throw py::value_error("effective size H: " + problem);
   return EffectiveSize::fixed(effectiveSize);
 }
 
-Material materialFromText(const std::string& text, const std::string& name) {
-  return Material(io::readMaterial(io::parseYaml(text, name)));
+Material materialFromDict(const py::handle& keys, const std::string& name) {
+  return Material(readDict(keys, name, [](const io::YamlMap& m) { return io::readMaterial(m); }));
 }
 
 // Pickling: a band as a plain tuple (normal, jump, onset strain, integrity, f).
@@ -52,6 +102,7 @@ BandState bandFromTuple(const py::tuple& t) {
   b.onsetStrain = t[2].cast<Voigt>();
   b.integrity = t[3].cast<double>();
   b.volumeFraction = t[4].cast<double>();
+  checkBand(b, "BandState");
   return b;
 }
 py::object optionalBand(const std::optional<BandState>& b) { return b ? py::object(bandTuple(*b)) : py::object(py::none()); }
@@ -69,6 +120,7 @@ MaterialPoint pointFromTuple(const py::tuple& t) {
   p.integrity = t[1].cast<double>();
   p.band = bandFromObject(t[2]);
   p.secondBand = bandFromObject(t[3]);
+  checkPoint(p);
   return p;
 }
 
@@ -80,36 +132,79 @@ struct Batch {
 };
 
 void bindMaterial(py::module_& m) {
-  py::class_<BandState>(m, "BandState", "A cracked point's band: normal n, jump [u] (mm), onset strain, integrity 1 - D, f = h/H")
+  py::class_<BandState>(m, "BandState",
+                        "A cracked point's band (docs/model.md): crack_normal n (unit vector, fixed at onset), jump [u] "
+                        "(mm, since onset), onset_strain (eps_xx, eps_yy, gamma_xy at onset), integrity x = 1 - D in (0, 1] "
+                        "and volume_fraction f = h/H in (0, 1). Values are checked when set; a band is checked as a whole "
+                        "when it is given to a PointState or an update.")
       .def(py::init<>())
-      .def_readwrite("crack_normal", &BandState::crackNormal)
-      .def_readwrite("jump", &BandState::jump)
-      .def_readwrite("onset_strain", &BandState::onsetStrain)
-      .def_readwrite("integrity", &BandState::integrity)
-      .def_readwrite("volume_fraction", &BandState::volumeFraction)
-      .def_property_readonly("damage", &BandState::damage)
-      .def_property_readonly("normal_jump", &BandState::normalJump)
+      .def_property(
+          "crack_normal", [](const BandState& b) { return b.crackNormal; },
+          [](BandState& b, const Vec2& n) { checkNormal(n, "BandState.crack_normal"), b.crackNormal = n; },
+          "the band's normal n (unit vector), fixed at onset")
+      .def_property(
+          "jump", [](const BandState& b) { return b.jump; },
+          [](BandState& b, const Vec2& j) { checkFinite(j, "BandState.jump"), b.jump = j; },
+          "the displacement jump [u] across the band since onset (x, y; mm)")
+      .def_property(
+          "onset_strain", [](const BandState& b) { return b.onsetStrain; },
+          [](BandState& b, const Voigt& e) { checkFinite(e, "BandState.onset_strain"), b.onsetStrain = e; },
+          "the strain of both phases at onset (eps_xx, eps_yy, gamma_xy; engineering shear)")
+      .def_property(
+          "integrity", [](const BandState& b) { return b.integrity; },
+          [](BandState& b, double x) { checkIntegrity(x, "BandState.integrity"), b.integrity = x; },
+          "x = 1 - D of the band, in (0, 1]")
+      .def_property(
+          "volume_fraction", [](const BandState& b) { return b.volumeFraction; },
+          [](BandState& b, double f) { checkVolumeFraction(f, "BandState.volume_fraction"), b.volumeFraction = f; },
+          "f = h/H, Eq. (1), in (0, 1/(1 + 1e-6)]")
+      .def_property_readonly("damage", &BandState::damage, "D = 1 - integrity")
+      .def_property_readonly("normal_jump", &BandState::normalJump, "[u] . n (mm): the band's opening")
       .def(py::pickle([](const BandState& b) { return bandTuple(b); }, [](const py::tuple& t) { return bandFromTuple(t); }))
       .def("__repr__", [](const BandState& b) {
         return "BandState(normal=[" + std::to_string(b.crackNormal[0]) + ", " + std::to_string(b.crackNormal[1]) +
                "], damage=" + std::to_string(b.damage()) + ", normal_jump=" + std::to_string(b.normalJump()) + " mm)";
       });
 
+  const auto optionalBandSetter = [](const char* what) {
+    return [what](MaterialPoint& p, const std::optional<BandState>& b, std::optional<BandState> MaterialPoint::*member) {
+      if (b) checkBand(*b, what);
+      p.*member = b;
+    };
+  };
   py::class_<MaterialPoint>(m, "PointState",
-                            "The state of one material point: strain (eps_xx, eps_yy, gamma_xy), the smeared crack's "
-                            "integrity, and the enriched point's bands (None while intact). Plain data: copy and pickle it.")
+                            "The state of one material point: strain (eps_xx, eps_yy, gamma_xy; engineering shear), the "
+                            "smeared crack's integrity 1 - D, and the enriched point's bands (None while intact). Plain "
+                            "data: copy and pickle it. Values are checked when set and before every update.")
       .def(py::init<>())
       .def(py::init([](const Voigt& strain) {
+             checkFinite(strain, "PointState.strain");
              MaterialPoint p;
              p.strain = strain;
              return p;
            }),
            py::arg("strain"))
-      .def_readwrite("strain", &MaterialPoint::strain)
-      .def_readwrite("integrity", &MaterialPoint::integrity)
-      .def_readwrite("band", &MaterialPoint::band)
-      .def_readwrite("second_band", &MaterialPoint::secondBand)
-      .def_property_readonly("damage", &MaterialPoint::damage)
+      .def_property(
+          "strain", [](const MaterialPoint& p) { return p.strain; },
+          [](MaterialPoint& p, const Voigt& e) { checkFinite(e, "PointState.strain"), p.strain = e; },
+          "the macroscopic strain (eps_xx, eps_yy, gamma_xy; engineering shear)")
+      .def_property(
+          "integrity", [](const MaterialPoint& p) { return p.integrity; },
+          [](MaterialPoint& p, double x) { checkIntegrity(x, "PointState.integrity"), p.integrity = x; },
+          "x = 1 - D of a smeared-crack point, in (0, 1] (1 for the other models)")
+      .def_property(
+          "band", [](const MaterialPoint& p) { return p.band; },
+          [setter = optionalBandSetter("PointState.band")](MaterialPoint& p, const std::optional<BandState>& b) {
+            setter(p, b, &MaterialPoint::band);
+          },
+          "the enriched point's band (a BandState, a copy), None while intact")
+      .def_property(
+          "second_band", [](const MaterialPoint& p) { return p.secondBand; },
+          [setter = optionalBandSetter("PointState.second_band")](MaterialPoint& p, const std::optional<BandState>& b) {
+            setter(p, b, &MaterialPoint::secondBand);
+          },
+          "the second band (second_band: orthogonal; a BandState, a copy), None until it opens")
+      .def_property_readonly("damage", &MaterialPoint::damage, "D of the (first) band, or of the smeared crack")
       .def(py::pickle([](const MaterialPoint& p) { return pointTuple(p); }, [](const py::tuple& t) { return pointFromTuple(t); }))
       .def("__copy__", [](const MaterialPoint& p) { return p; })
       .def("__deepcopy__", [](const MaterialPoint& p, const py::dict&) { return p; })
@@ -121,34 +216,50 @@ void bindMaterial(py::module_& m) {
 
   py::class_<UpdateResult>(m, "UpdateResult", "What one update gives: stress (MPa), consistent tangent, dissipation "
                                               "(per unit volume, MPa) and status")
-      .def_readonly("stress", &UpdateResult::stress)
-      .def_readonly("tangent", &UpdateResult::tangent)
-      .def_readonly("dissipation", &UpdateResult::dissipation)
-      .def_property_readonly("status", [](const UpdateResult& r) { return std::string(toString(r.status)); })
-      .def_property_readonly("converged", &UpdateResult::converged)
-      .def_readonly("residual", &UpdateResult::residual)
-      .def_readonly("iterations", &UpdateResult::iterations)
-      .def_readonly("released", &UpdateResult::released)
-      .def_readonly("substeps", &UpdateResult::substeps)
-      .def_readonly("refused_size", &UpdateResult::refusedSize)
+      .def_readonly("stress", &UpdateResult::stress, "(sig_xx, sig_yy, sig_xy) at the end of the increment (MPa)")
+      .def_readonly("tangent", &UpdateResult::tangent,
+                    "the consistent tangent d sigma / d eps (3 x 3, MPa; engineering shear), Eq. (10)")
+      .def_readonly("dissipation", &UpdateResult::dissipation,
+                    "energy dissipated in this increment per unit volume (MPa = N mm / mm^3), >= 0")
+      .def_property_readonly(
+          "status", [](const UpdateResult& r) { return std::string(toString(r.status)); },
+          "'converged', 'not_converged', 'snap_back' or 'size_too_small' (the entries of ecm.STATUS)")
+      .def_property_readonly("converged", &UpdateResult::converged, "whether the state was updated")
+      .def_readonly("residual", &UpdateResult::residual, "the traction-continuity residual of Eq. (6) at the end (MPa)")
+      .def_readonly("iterations", &UpdateResult::iterations, "Newton iterations taken")
+      .def_readonly("released", &UpdateResult::released,
+                    "whether a snap-back was released onto the stable branch (snap_back='release')")
+      .def_readonly("substeps", &UpdateResult::substeps, "the sub-steps the increment was taken in (1: none)")
+      .def_readonly("refused_size", &UpdateResult::refusedSize,
+                    "with status 'size_too_small': the effective size H (mm) that was refused")
       .def("__repr__", [](const UpdateResult& r) {
         return "UpdateResult(status='" + std::string(toString(r.status)) + "', stress=[" + std::to_string(r.stress[0]) +
                ", " + std::to_string(r.stress[1]) + ", " + std::to_string(r.stress[2]) + "] MPa)";
       });
 
-  py::class_<Batch>(m, "PointArray", "N material points' states, for Material.update_many")
-      .def(py::init([](std::size_t n) { return Batch{std::vector<MaterialPoint>(n)}; }), py::arg("n"))
-      .def(py::init([](const std::vector<MaterialPoint>& points) { return Batch{points}; }), py::arg("points"))
+  // A Python index (negative from the end) into n points.
+  const auto index = [](py::ssize_t i, std::size_t n) {
+    const py::ssize_t size = static_cast<py::ssize_t>(n);
+    if (i < -size || i >= size) throw py::index_error("point " + std::to_string(i) + " of " + std::to_string(n));
+    return static_cast<std::size_t>(i < 0 ? i + size : i);
+  };
+  py::class_<Batch>(m, "PointArray",
+                    "N material points' states (PointState each), for Material.update_many. p[i] is a copy of point i "
+                    "(negative i from the end); p[i] = state sets it. strain is an (N, 3) array (eps_xx, eps_yy, "
+                    "gamma_xy), damage an (N,) array of D.")
+      .def(py::init([](std::size_t n) { return Batch{std::vector<MaterialPoint>(n)}; }), py::arg("n"), "n intact points")
+      .def(py::init([](const std::vector<MaterialPoint>& points) {
+             for (const MaterialPoint& p : points) checkPoint(p);
+             return Batch{points};
+           }),
+           py::arg("points"), "copies of the given PointStates")
       .def("__len__", [](const Batch& b) { return b.points.size(); })
-      .def("__getitem__",
-           [](const Batch& b, std::size_t i) {
-             if (i >= b.points.size()) throw py::index_error("point " + std::to_string(i) + " of " + std::to_string(b.points.size()));
-             return b.points[i];
-           })
+      .def("__getitem__", [index](const Batch& b, py::ssize_t i) { return b.points[index(i, b.points.size())]; })
       .def("__setitem__",
-           [](Batch& b, std::size_t i, const MaterialPoint& p) {
-             if (i >= b.points.size()) throw py::index_error("point " + std::to_string(i) + " of " + std::to_string(b.points.size()));
-             b.points[i] = p;
+           [index](Batch& b, py::ssize_t i, const MaterialPoint& p) {
+             const std::size_t k = index(i, b.points.size());
+             checkPoint(p);
+             b.points[k] = p;
            })
       .def_property_readonly("strain",
                              [](const Batch& b) {
@@ -157,14 +268,16 @@ void bindMaterial(py::module_& m) {
                                for (std::size_t i = 0; i < b.points.size(); ++i)
                                  for (int c = 0; c < 3; ++c) v(static_cast<py::ssize_t>(i), c) = b.points[i].strain[c];
                                return a;
-                             })
+                             },
+                             "(N, 3) array of the strains (eps_xx, eps_yy, gamma_xy), a copy")
       .def_property_readonly("damage",
                              [](const Batch& b) {
                                py::array_t<double> a(static_cast<py::ssize_t>(b.points.size()));
                                auto v = a.mutable_unchecked<1>();
                                for (std::size_t i = 0; i < b.points.size(); ++i) v(static_cast<py::ssize_t>(i)) = b.points[i].damage();
                                return a;
-                             })
+                             },
+                             "(N,) array of the damage D, a copy")
       .def(py::pickle(
           [](const Batch& b) {
             py::list l;
@@ -181,10 +294,10 @@ void bindMaterial(py::module_& m) {
                        "A material: model (enriched | smeared_crack | linear_elastic) and parameters, read and checked "
                        "as the tools read a material file (io/material_yaml.hpp). Material(**keys), "
                        "Material.from_file(path) or Material.from_dict(d).")
-      .def(py::init([](const py::kwargs& keys) { return materialFromText(yamlText(keys), "<keywords>"); }))
+      .def(py::init([](const py::kwargs& keys) { return materialFromDict(keys, "<keywords>"); }))
       .def_static("from_file", [](const std::filesystem::path& path) { return Material(io::loadMaterialFile(path)); },
                   py::arg("path"))
-      .def_static("from_dict", [](const py::dict& d) { return materialFromText(yamlText(d), "<dict>"); }, py::arg("d"))
+      .def_static("from_dict", [](const py::dict& d) { return materialFromDict(d, "<dict>"); }, py::arg("d"))
       .def_property_readonly("name", [](const Material& mat) { return mat.params().name; })
       .def_property_readonly("model", [](const Material& mat) { return std::string(toString(mat.params().model)); })
       .def_property_readonly("stiffness", &Material::stiffness, "elastic a: strain -> stress (Voigt, engineering shear)")
@@ -193,7 +306,9 @@ void bindMaterial(py::module_& m) {
           "update",
           [](const Material& mat, MaterialPoint& point, const Voigt& increment, double effectiveSize, bool tangent,
              const std::string& snapBack, int substepLevels) {
-            return mat.update(point, increment, sizeOf(effectiveSize), optionsOf(tangent, snapBack, substepLevels));
+            checkPoint(point);
+            checkFinite(increment, "strain_increment");
+            return mat.update(point, increment, sizeOf(mat, effectiveSize), optionsOf(tangent, snapBack, substepLevels));
           },
           py::arg("state"), py::arg("strain_increment"), py::arg("H"), py::arg("tangent") = true,
           py::arg("snap_back") = "stop", py::arg("substep_levels") = 0,
@@ -207,15 +322,18 @@ void bindMaterial(py::module_& m) {
             const auto n = static_cast<py::ssize_t>(batch.points.size());
             if (increments.ndim() != 2 || increments.shape(0) != n || increments.shape(1) != 3)
               throw py::value_error("strain_increments must be an array of shape (" + std::to_string(n) + ", 3)");
-            std::vector<double> sizes;
-            if (py::isinstance<py::float_>(effectiveSize) || py::isinstance<py::int_>(effectiveSize)) {
-              sizes.assign(static_cast<std::size_t>(n), effectiveSize.cast<double>());
-            } else {
-              const auto h = effectiveSize.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
-              if (h.ndim() != 1 || h.shape(0) != n) throw py::value_error("H must be a number or an array of shape (" + std::to_string(n) + ",)");
-              sizes.assign(h.data(), h.data() + n);
+            // H: a number (a NumPy scalar included) or one per point.
+            const auto h = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(effectiveSize);
+            if (!h || !(h.ndim() == 0 || (h.ndim() == 1 && h.shape(0) == n))) {
+              PyErr_Clear();
+              throw py::value_error("H must be a number or an array of shape (" + std::to_string(n) + ",)");
             }
-            for (const double h : sizes) sizeOf(h);
+            std::vector<double> sizes(static_cast<std::size_t>(n), h.ndim() == 0 ? *h.data() : 0.0);
+            if (h.ndim() == 1) sizes.assign(h.data(), h.data() + n);
+            for (const double size : sizes) sizeOf(mat, size);
+            for (const MaterialPoint& p : batch.points) checkPoint(p);
+            for (py::ssize_t i = 0; i < 3 * n; ++i)
+              if (!std::isfinite(increments.data()[i])) throw py::value_error("strain_increments must be finite");
             const UpdateOptions options = optionsOf(tangent, snapBack, substepLevels);
             py::array_t<double> stress({n, py::ssize_t{3}}), dissipation(n);
             py::array_t<std::int8_t> status(n);

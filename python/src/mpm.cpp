@@ -23,12 +23,14 @@ void bindMpm(py::module_& m) {
       "_run_scene",
       [](const py::object& spec, const std::filesystem::path& out, int threads, const std::optional<std::string>& preset,
          bool snapshots, bool plot, bool restart, long maxSteps, const py::object& progress) {
+        if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+          throw py::type_error("progress must be callable as progress(time, end_time, step) or None, got " +
+                               py::str(progress.get_type().attr("__name__")).cast<std::string>());
         mpm::Scene scene;
         mpm::RunOptions options;
         if (py::isinstance<py::dict>(spec)) {
-          const std::string text = yamlText(spec);
-          scene = mpm::readScene(io::parseYaml(text, "<dict>"));
-          options.sceneHash = io::fnv1a64(text);
+          scene = readDict(spec, "<dict>", [](const io::YamlMap& map) { return mpm::readScene(map); });
+          options.sceneHash = io::fnv1a64(dictText(spec, "<dict>").text);
         } else {
           const auto path = spec.cast<std::filesystem::path>();
           scene = mpm::loadSceneFile(path);
@@ -70,10 +72,13 @@ void bindMpm(py::module_& m) {
           r = mpm::runScene(scene, options);
         }
         if (raised) throw std::move(*raised);
+        // One shape for every scheme: error is the failure's message, None unless the run failed
+        // (a stop on request is no error, whatever message the scheme keeps for it).
         py::dict result;
+        result["status"] = r.completed ? "completed" : (r.stopped ? "stopped" : "failed");
         result["completed"] = r.completed;
         result["stopped"] = r.stopped;
-        result["error"] = r.error;
+        result["error"] = r.completed || r.stopped ? py::object(py::none()) : py::cast(r.error);
         result["steps"] = r.steps;
         result["particles"] = r.particles;
         result["peak_load_N"] = r.peakLoad;

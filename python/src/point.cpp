@@ -25,13 +25,13 @@ bool isPath(const py::handle& o) {
 driver::PointScene pointScene(const py::object& scene) {
   if (isPath(scene)) return driver::loadPointScene(scene.cast<std::filesystem::path>());
   if (!py::isinstance<py::dict>(scene)) throw py::type_error("a point scene is a path or a dict");
-  return driver::readPointScene(io::parseYaml(yamlText(scene), "<dict>"));
+  return readDict(scene, "<dict>", [](const io::YamlMap& m) { return driver::readPointScene(m); });
 }
 
 driver::SnapBackStudy study(const py::object& s) {
   if (isPath(s)) return driver::loadSnapBackStudy(s.cast<std::filesystem::path>());
   if (!py::isinstance<py::dict>(s)) throw py::type_error("a snap-back study is a path or a dict");
-  return driver::readSnapBackStudy(io::parseYaml(yamlText(s), "<dict>"));
+  return readDict(s, "<dict>", [](const io::YamlMap& m) { return driver::readSnapBackStudy(m); });
 }
 
 // Rows of equal length as an (rows, columns) array.

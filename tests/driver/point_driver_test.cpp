@@ -1,5 +1,8 @@
 // ecm-point's driver: elastic closed forms, mixed control, the enriched point against its
 // closed form, the energy identity, snap-back detection and tracing, cyclic secant unloading.
+#include <algorithm>
+
+#include "driver/mixed_control.hpp"
 #include "driver/point_driver.hpp"
 #include "driver/point_output.hpp"
 #include "io/csv_reader.hpp"
@@ -244,6 +247,130 @@ TEST(PointDriver, HistoryAndSummaryShowTheSecondBand) {
   EXPECT_EQ(j["second_band"], "orthogonal");
   EXPECT_EQ(j["two_bands"], 1);
   EXPECT_EQ(j["final"]["second_band"]["normal"][1], 1.0);
+}
+
+// The path of a second band opening beside a first band that still carries traction: the
+// material E 25000, nu 0.15, f_t' 2.5, E_p 12, n 0.2, h 0.1, H 20 mm, plane stress; uniaxial
+// stress to eps_xx = 1.0131e-4 in 100 increments, then d eps_xx = d eps_yy = d gamma_xy / 2 to
+// (2.0381e-4, 8.7378e-5, 2.05e-4) in 100 increments.
+MaterialParams loadedFirstBandMaterial() {
+  MaterialParams p;
+  p.name = "second-band-beside-a-loaded-first";
+  p.model = ModelKind::Enriched;
+  p.elastic = {25000.0, 0.15, Hypothesis::PlaneStress};
+  p.tensileStrength = 2.5;
+  p.softeningModulus = 12.0;
+  p.softeningExponent = 0.2;
+  p.bandWidth = 0.1;
+  p.secondBand = SecondBandOption::Orthogonal;
+  return p;
+}
+const Voigt kLoadedFirstBandEnd(2.0381e-4, 8.7378e-5, 2.05e-4);
+
+TEST(PointDriver, ASecondBandOpeningBesideALoadedFirstBandIsReportedAsASnapBack) {
+  // Its Y starts above F(0) (the effective stress is biaxial), so its damage catches up at
+  // fixed strain (sigma_yy 2.48 -> 2.20 MPa, D2 0 -> 0.965 on main): a jump with no continuous
+  // branch, which the run recorded as an ordinary increment (snapback_detected: false).
+  PointScene s;
+  s.name = "loaded-first-band";
+  s.material = loadedFirstBandMaterial();
+  s.effectiveSize = 20.0;
+  Segment pull;
+  pull.control = {Control::Strain, Control::Stress, Control::Stress};
+  pull.target = Voigt(1.0131e-4, 0.0, 0.0);
+  pull.increments = 100;
+  Segment shear;
+  shear.target = kLoadedFirstBandEnd;
+  shear.increments = 100;
+  s.path = {pull, shear};
+  const PointRun run = runPoint(s);
+  ASSERT_TRUE(run.completed) << run.failure;
+  EXPECT_TRUE(run.snapBack.detected);
+  EXPECT_TRUE(run.snapBack.jumped);
+  EXPECT_GT(run.snapBack.stressBefore - run.snapBack.stressAfter, 0.0);
+  const auto opened = std::find_if(run.history.begin(), run.history.end(), [](const HistoryRow& r) { return r.secondBand; });
+  ASSERT_NE(opened, run.history.end());
+  EXPECT_TRUE(opened->snapBackRelease);
+  EXPECT_GT(opened->secondDamage, 0.9);
+  EXPECT_TRUE((opened - 1)->event & kLastStableRow);
+  // and the stop policy stops there
+  s.snapBack = SnapBackPolicy::Stop;
+  const PointRun stopped = runPoint(s);
+  EXPECT_FALSE(stopped.completed);
+  EXPECT_TRUE(stopped.snapBack.detected);
+}
+
+TEST(PointDriver, TheSecondBandsJumpBooksTheStoredEnergyItReleases) {
+  // At fixed strain no work is done, so the jump dissipates all the stored energy it releases:
+  // psi before minus psi after. Over an increment |d eps| <= 1e-11 that straddles the trigger,
+  // the work is at most 2 max|sigma| |d eps| (< 1e-10 MPa with |sigma| < 4 MPa), so the booked
+  // dissipation equals psi(start) - psi(end) to 1e-10 MPa; f2 int Y dD along the envelope
+  // booked 1.68e-5 of the 1.89e-5 MPa released.
+  const Material m(loadedFirstBandMaterial());
+  const auto size = EffectiveSize::fixed(20.0);
+  MixedControlSettings settings;
+  settings.tolerance = 1e-8 * 2.5;
+  MaterialPoint p;
+  Voigt stress = Voigt::Zero();
+  MixedTarget pull;
+  pull.control = {Control::Strain, Control::Stress, Control::Stress};
+  pull.strainIncrement = Voigt(1.0131e-6, 0.0, 0.0);
+  for (int i = 0; i < 100; ++i) {
+    const StepOutcome out = mixedControlStep(m, p, stress, pull, size, settings, SnapBackPolicy::Release);
+    ASSERT_TRUE(out.converged()) << i;
+    stress = out.result.stress;
+  }
+  const UpdateOptions release(SnapBackPolicy::Release);
+  const Voigt start = p.strain;
+  Voigt d = Voigt::Zero();
+  for (int i = 1; i <= 100; ++i) {
+    d = start + i / 100.0 * (kLoadedFirstBandEnd - start) - p.strain;
+    MaterialPoint q = p;
+    ASSERT_TRUE(m.update(q, d, size, release).converged()) << i;
+    if (q.secondBand) break;
+    p = q;
+  }
+  ASSERT_FALSE(p.secondBand);
+  // Bisect the increment to a piece of at most 1e-11 strain that opens the band.
+  double lo = 0.0, hi = 1.0;
+  while ((hi - lo) * d.norm() > 1e-11) {
+    const double mid = 0.5 * (lo + hi);
+    MaterialPoint q = p;
+    ASSERT_TRUE(m.update(q, mid * d, size, release).converged());
+    (q.secondBand ? hi : lo) = mid;
+  }
+  ASSERT_TRUE(m.update(p, lo * d, size, release).converged());
+  ASSERT_FALSE(p.secondBand);
+  const double before = m.enriched()->storedEnergy(*p.band, nullptr, p.strain);
+  const UpdateResult jump = m.update(p, (hi - lo) * d, size, release);
+  ASSERT_TRUE(jump.converged());
+  ASSERT_TRUE(p.secondBand);
+  EXPECT_TRUE(jump.released);
+  EXPECT_GT(p.secondBand->damage(), 0.9);
+  const double after = m.enriched()->storedEnergy(*p.band, &*p.secondBand, p.strain);
+  EXPECT_GT(before - after, 1e-5);
+  EXPECT_NEAR(jump.dissipation, before - after, 1e-10);
+}
+
+TEST(PointDriver, OnlyMaximaOfTheLoadingBranchAreFlagged) {
+  // A uniaxial pull far past failure (E 25000, nu 0.15, f_t' 2.5, E_p 12, n 0.2, h 0.1 mm,
+  // H = 100 mm, eps_xx to 5e-2 in 20000 increments): the one maximum is the band's peak,
+  // 2.5241 MPa just after onset (nu > 0). Near failure the stress falls to ~3e-6 MPa by
+  // round-off, where main flagged five more "maxima" (rows 16912 to 17541).
+  PointScene s;
+  s.material = loadedFirstBandMaterial();
+  s.material.secondBand = SecondBandOption::Off;
+  s.effectiveSize = 100.0;
+  s.path = presetSegments(preset("uniaxial_tension", 5e-2, 20000), 0.15);
+  const PointRun run = runPoint(s);
+  ASSERT_TRUE(run.completed) << run.failure;
+  int maxima = 0;
+  for (const HistoryRow& r : run.history)
+    if (r.event & kPeakRow) {
+      ++maxima;
+      EXPECT_GT(r.stress[0], 2.5) << "row " << r.increment;
+    }
+  EXPECT_EQ(maxima, 1);
 }
 
 }  // namespace

@@ -28,6 +28,15 @@ awk 'NR == 1 { next }
          if (!(dmg[r] == dmg[10] && w[r] == w[10] && sig[r] < sig[r - 1])) { print "row " r ": unloading must be elastic"; bad = 1 }
        exit bad
      }' "$work/out.txt"
-test -n "$(find "$work/prefix" -name ecmConfigVersion.cmake)"
+config_version=$(find "$work/prefix" -name ecmConfigVersion.cmake)
+test -n "$config_version"
+# ecm/version.hpp says the package's version, and the program built against it prints it.
+version=$(sed -n 's/^set(PACKAGE_VERSION "\(.*\)")$/\1/p' "$config_version")
+grep -q "#define ECM_VERSION_STRING \"$version\"" "$work/prefix/include/ecm/ecm/version.hpp"
+test "$("$work/build/point_path" 2>&1 >/dev/null)" = "ecm $version"
+# Every document an installed header cites is installed (share/doc/ecm/), and the consumer's page.
+for doc in $(grep -rhoE "docs/[a-z_-]+\.md" "$work/prefix/include/ecm" | sort -u) docs/cpp.md; do
+  test -f "$work/prefix/share/doc/ecm/$(basename "$doc")" || { echo "not installed: $doc"; exit 1; }
+done
 ! grep -rqE "yaml-cpp|nlohmann" "$work/prefix/include/ecm/material" "$work/prefix/include/ecm/calibration"
 echo "consumer: built against $work/prefix and ran"

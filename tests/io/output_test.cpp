@@ -1,6 +1,7 @@
 // Output folders, JSON summaries, gnuplot plots and the progress reporter.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -9,6 +10,7 @@
 #include "io/json_summary.hpp"
 #include "io/output_dir.hpp"
 #include "io/output_error.hpp"
+#include "io/particle_map.hpp"
 #include "io/progress.hpp"
 #include "temp_dir.hpp"
 
@@ -104,8 +106,23 @@ TEST(Gnuplot, ScriptHasTerminalFallbackLabelsFunctionsAndSeries) {
   expectContains(s, "set output 'plot.png'");
   expectContains(s, "set title 'softening of ''den'' concrete'");
   expectContains(s, "f(x) = 3*exp(-x/0.05)");
-  expectContains(s, "'curve.csv' using 1:2 title 'model' with lines");
-  expectContains(s, "f(x) title 'target' with lines dt 2");
+  expectContains(s, "'curve.csv' using 1:2 title 'model' noenhanced with lines");
+  expectContains(s, "f(x) title 'target' noenhanced with lines dt 2");
+}
+
+TEST(Gnuplot, LabelsAndLegendsArePlainTextUnlessAsked) {
+  // Issue: "sig_xx" in a legend rendered as sig, a subscript x, then x (gnuplot's enhanced text).
+  PlotSpec spec = sampleSpec();
+  spec.xLabel = "eps_xx";
+  spec.series[0].title = "sig_xx";
+  std::string s = gnuplotScript(spec, "plot.png");
+  expectContains(s, "set xlabel 'eps_xx' noenhanced");
+  expectContains(s, "set ylabel 'sigma (MPa)' noenhanced");
+  expectContains(s, "title 'sig_xx' noenhanced with lines");
+  spec.enhancedLabels = true;  // a label with markup ({/Symbol s})
+  s = gnuplotScript(spec, "plot.png");
+  expectContains(s, "set xlabel 'eps_xx'\n");
+  expectContains(s, "title 'sig_xx' noenhanced with lines");
 }
 
 TEST(Gnuplot, RendersAPngWhenGnuplotIsThere) {
@@ -116,6 +133,36 @@ TEST(Gnuplot, RendersAPngWhenGnuplotIsThere) {
   if (std::system("gnuplot --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed";
   EXPECT_TRUE(ok);
   EXPECT_GT(std::filesystem::file_size(dir.path() / "plot.png"), 1000u);
+}
+
+TEST(ParticleMap, ASlenderDomainIsStretchedAndACompactOneDrawnToScale) {
+  // Issue: the damage map of the 20 x 1000 mm bar (grid 40 x 1020 mm) drawn to scale was a
+  // sliver under the colour bar, with overlapping x labels.
+  ParticleMap bar{"bar: damage at the end", "particles_final.csv", "1:2:3", "damage", 40.0, 1020.0, 8000};
+  const PlotSpec slender = particleMapSpec(bar);
+  std::string s = gnuplotScript(slender, "damage_map.png");
+  EXPECT_EQ(s.find("set size ratio -1"), std::string::npos);
+  expectContains(slender.title, "(axes not to scale)");
+  expectContains(s, "set colorbox vertical user origin graph 1.04");
+  expectContains(s, "set xtics 20");  // two tics across the 40 mm, labels apart
+  EXPECT_GT(slender.height, slender.width);
+  ParticleMap panel = bar;
+  panel.width = panel.height = 205.0;  // the DEN panel: to scale
+  s = gnuplotScript(particleMapSpec(panel), "damage_map.png");
+  expectContains(s, "set size ratio -1");
+  EXPECT_EQ(particleMapSpec(panel).title, "bar: damage at the end");
+}
+
+TEST(ParticleMap, RendersWhenGnuplotIsThere) {
+  const TempDir dir;
+  std::string csv = "x_mm,y_mm,damage\n";
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 200; ++j) csv += std::to_string(2.5 + 5 * i) + "," + std::to_string(2.5 + 5 * j) + "," + (j == 98 ? "1" : "0") + "\n";
+  dir.write("particles_final.csv", csv);
+  const bool ok = renderPlot(particleMapSpec({"bar", "particles_final.csv", "1:2:3", "damage", 20.0, 1000.0, 800}),
+                             dir.path() / "damage_map.png");
+  if (std::system("gnuplot --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "gnuplot not installed";
+  EXPECT_TRUE(ok);
 }
 
 TEST(Gnuplot, MissingOrFailingGnuplotOnlyWarns) {
@@ -173,6 +220,20 @@ TEST(Progress, TerminalModeRedrawsInPlace) {
   const std::string s = captured(f);
   std::fclose(f);
   expectContains(s, "\r\033[Kmpm: done (100.0%)");
+}
+
+TEST(Progress, ANaNProgressCountsAsNone) {
+  // The bar's width is cast to an int: a NaN fraction there was undefined behaviour (the same
+  // pattern as the fuzzer's finding in the path's sample count); NaN now counts as 0 done.
+  std::FILE* f = std::tmpfile();
+  ASSERT_NE(f, nullptr);
+  {
+    Progress p(10.0, {"mpm", 0.0, f, true});
+    p.update(NAN);
+  }
+  const std::string s = captured(f);
+  std::fclose(f);
+  expectContains(s, "mpm: done (0.0%)");
 }
 
 TEST(Progress, Durations) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "enriched_uniaxial.hpp"
+#include "material/material.hpp"
 #include "material/smeared_crack.hpp"
 
 namespace ecm {
@@ -156,6 +157,36 @@ TEST(Extremes, IntegrityAtTheUnderflowLimitKeepsTheTangentFinite) {
   EXPECT_TRUE(r.stress.allFinite());
   EXPECT_TRUE(r.tangent.allFinite());
   EXPECT_GE(r.dissipation, 0.0);
+}
+
+TEST(Extremes, HugeJumpIncrementSamplesItsPathWithoutOverflow) {
+  // Fuzzer finding (fuzz/corpus/material_update/int-cast-path-samples): a jump increment of some
+  // 6e9 kJumpCheck h made the path's sample count overflow an int before it was clamped
+  // (undefined behaviour, reported by UBSan under scripts/sanitize.sh). The harness's input
+  // decoded: f = h/H = 1 - 1e-6, E 1 MPa with f_t' 1000 MPa, strain increments of 1e7.
+  MaterialParams p;
+  p.model = ModelKind::Enriched;
+  p.elastic = {1.0, 0.3100784313725491, Hypothesis::PlaneStrain};
+  p.tensileStrength = 1000.0;
+  p.softeningModulus = 1e6;
+  p.softeningExponent = 0.499;
+  p.bandWidth = 9.585458220833413;
+  const Material m(p);
+  const auto size = EffectiveSize::fixed(9.585468202229087);
+  MaterialPoint point;
+  for (const Voigt& d : {Voigt(-0.10207124692610127, 0.00020131780220880693, 5.149990289062503e-05),
+                         Voigt(-8605712.160094863, 5209252.544834244, 8659624.217479952),
+                         Voigt(33839.299224698545, 254815.40557171317, 254815.40557171317),
+                         Voigt(10000000.0, -9995117.112993058, -9960936.903944457)}) {
+    const MaterialPoint before = point;
+    const UpdateResult r = m.update(point, d, size);
+    if (!r.converged()) {  // a refused increment leaves the state as it was
+      EXPECT_EQ(point.strain, before.strain);
+      continue;
+    }
+    EXPECT_TRUE(finite(r));
+    EXPECT_GE(r.dissipation, 0.0);
+  }
 }
 
 }  // namespace

@@ -70,3 +70,11 @@ def test_bad_input_raises_the_message_the_tool_prints(tmp_path):
     with pytest.raises(ecm.InputError) as raised:
         ecm.calibrate(bad)
     assert str(raised.value) in err and str(raised.value).startswith(f"{bad}:2:")
+
+
+def test_numpy_scalars_are_numbers():
+    # Issue: calibrate(..., softening_exponent=np.float64, youngs_modulus=np.int64) was not JSON serializable.
+    plain = ecm.calibrate(softening_exponent=0.128, **PAPER)
+    as_numpy = ecm.calibrate(softening_exponent=np.float64(0.128), youngs_modulus=np.int64(32000),
+                             tensile_strength=np.float64(3.0), fracture_energy=0.11, band_width=0.05)
+    assert as_numpy == plain

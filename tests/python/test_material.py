@@ -135,3 +135,73 @@ def test_bad_parameters_are_refused_naming_the_key():
 def test_a_file_that_does_not_exist_is_an_input_error(tmp_path):
     with pytest.raises(ecm.InputError, match="nope.yaml"):
         ecm.Material.from_file(tmp_path / "nope.yaml")
+
+
+def test_numpy_scalars_are_numbers():
+    # Issue: json refused np.int64 ("not JSON serializable"), update_many refused H = np.int64(10).
+    as_numpy = dict(CONCRETE, youngs_modulus=np.int64(32000), poisson_ratio=np.float32(0.2),
+                    softening_exponent=np.float64(0.128))
+    m, reference = ecm.Material(**as_numpy), ecm.Material(**CONCRETE)
+    assert m.to_yaml() == reference.to_yaml()  # float32(0.2) is read as 0.2, its shortest text
+    for H in (np.int64(10), np.float32(10.0), 10):
+        points = ecm.PointArray(2)
+        out = m.update_many(points, np.full((2, 3), 1e-6), H)
+        np.testing.assert_array_equal(out["stress"][0], reference.stiffness @ np.full(3, 1e-6))
+    with pytest.raises(ValueError, match="H must be a number or an array"):
+        m.update_many(ecm.PointArray(2), np.zeros((2, 3)), np.ones(3))
+
+
+def test_states_out_of_range_are_refused():
+    b = ecm.BandState()
+    for field, value in (("integrity", -1.0), ("integrity", 0.0), ("integrity", 1.5), ("volume_fraction", 5.0),
+                         ("volume_fraction", 1.0), ("volume_fraction", 0.0), ("crack_normal", [0.0, 0.0]),
+                         ("crack_normal", [1.0, 1.0]), ("jump", [np.nan, 0.0]), ("onset_strain", [np.inf, 0, 0])):
+        with pytest.raises(ValueError, match=field):
+            setattr(b, field, value)
+    with pytest.raises(ValueError, match="strain"):
+        ecm.PointState([np.nan, 0.0, 0.0])
+    p = ecm.PointState()
+    with pytest.raises(ValueError, match="crack_normal"):
+        p.band = ecm.BandState()  # a default band has no normal yet
+    with pytest.raises(ValueError, match="integrity"):
+        p.integrity = 2.0
+    good = ecm.BandState()
+    good.crack_normal, good.integrity, good.volume_fraction = [1.0, 0.0], 0.5, 0.005
+    p.band = good
+    assert p.band.integrity == 0.5
+
+
+def test_the_effective_size_is_checked_before_the_update():
+    m = ecm.Material(**CONCRETE)
+    for H in (np.inf, np.nan, 0.0, -1.0):
+        with pytest.raises(ValueError, match="effective size"):
+            m.update(ecm.PointState(), [1e-6, 0, 0], H)
+    # H below h (1 + 1e-6) = 0.05 mm: refused while intact too, as run_point refuses it
+    with pytest.raises(ValueError, match="smallest effective size"):
+        m.update(ecm.PointState(), [1e-6, 0, 0], 0.04)
+    with pytest.raises(ValueError, match="smallest effective size"):
+        m.update_many(ecm.PointArray(2), np.zeros((2, 3)), 0.04)
+    with pytest.raises(ValueError, match="strain_increment"):
+        m.update(ecm.PointState(), [np.nan, 0, 0], 10.0)
+
+
+def test_point_arrays_take_negative_indices():
+    m = ecm.Material(**CONCRETE)
+    points = ecm.PointArray([ecm.PointState(), cracked_point(m)])
+    assert points[-1].band is not None and points[-2].band is None
+    points[-2] = points[-1]
+    assert points[0].band.integrity == points[1].band.integrity
+    with pytest.raises(IndexError):
+        points[-3]
+    with pytest.raises(IndexError):
+        points[2]
+
+
+def test_fields_say_their_units():
+    assert "mm" in ecm.BandState.jump.__doc__ and "1 - D" in ecm.BandState.integrity.__doc__
+    assert "h/H" in ecm.BandState.volume_fraction.__doc__
+    assert "MPa" in ecm.UpdateResult.stress.__doc__ and "MPa" in ecm.UpdateResult.dissipation.__doc__
+    assert "gamma_xy" in ecm.PointState.strain.__doc__ and "N, 3" in ecm.PointArray.__doc__
+    for error in (ecm.InputError, ecm.ParameterError, ecm.CalibrationError, ecm.OutputError, ecm.CheckpointError):
+        assert error.__doc__ and len(error.__doc__) > 40
+    assert "mm" in ecm.read_mpm_output.__doc__ and "N" in ecm.read_mpm_output.__doc__

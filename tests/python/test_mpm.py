@@ -94,3 +94,31 @@ def test_an_implicit_scene_runs_as_the_tool_runs_it(source, tmp_path):
     assert out.summary["energy_balance"] < 1e-3
     assert np.all(np.diff(out.history["load_factor"][:80]) > 0.0)  # the top rises to the peak
     assert abs(result["peak_load_N"] - 2.9 * 20.0) < 1e-3 * 2.9 * 20.0
+
+
+def test_a_progress_that_is_not_callable_is_refused_before_the_run(source, tmp_path):
+    # Issue: progress=5 ran to the first row, then raised TypeError and left a checkpoint.
+    with pytest.raises(TypeError, match="progress must be callable"):
+        ecm.run_scene(source / "data/mpm/elastic-bar.yaml", tmp_path / "out", progress=5)
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_stopped_run_returns_the_same_dict_for_every_scheme(source, tmp_path):
+    # Issue: after a callback stop, 'error' was '' for the explicit scheme and a message for the implicit one.
+    text = (source / "data/mpm/bar-snapback-implicit.yaml").read_text()
+    implicit = tmp_path / "bar.yaml"
+    implicit.write_text(text.replace("until: 0.04 ", "until: 0.002"))
+    results = [ecm.run_scene(scene, tmp_path / name, threads=1, snapshots=False, plot=False,
+                             progress=lambda t, end, step: step < 3)
+               for scene, name in ((source / "data/mpm/elastic-bar.yaml", "explicit"), (implicit, "implicit"))]
+    for r in results:
+        assert r["status"] == "stopped" and r["stopped"] and not r["completed"] and r["error"] is None
+        assert r["checkpoint"]
+    assert results[0].keys() == results[1].keys()
+
+
+def test_a_scene_loaded_with_load_scene_runs_as_its_file(source, tmp_path):
+    scene = ecm.load_scene(source / "data/mpm/elastic-bar.yaml")
+    ecm.run_scene(scene, tmp_path / "dict", threads=1, snapshots=False, plot=False)
+    ecm.run_scene(source / "data/mpm/elastic-bar.yaml", tmp_path / "file", threads=1, snapshots=False, plot=False)
+    assert (tmp_path / "dict/history.csv").read_bytes() == (tmp_path / "file/history.csv").read_bytes()

@@ -52,8 +52,15 @@ def test_bad_input_raises_the_message_the_tool_prints(tmp_path):
         ecm.run_point(bad)
     assert str(raised.value) in err
     assert str(raised.value).startswith(f"{bad}:3:")
-    with pytest.raises(ecm.InputError, match=r"^<dict>:\d+: .*effective_size"):
+    # a dict's error names the key path, not a line of a text the user never saw
+    with pytest.raises(ecm.InputError, match=r"^<dict>: key 'effective_size'"):
         ecm.run_point({"name": "x", "material": {"file": "den-concrete.yaml"}, "effective_size": -1.0,
+                       "path": {"preset": "uniaxial_tension", "strain": 1e-3, "increments": 10}})
+    with pytest.raises(ecm.InputError, match=r"^<dict>: key 'path.increments': expected an integer"):
+        ecm.run_point({"name": "x", "material": {"file": "den-concrete.yaml"}, "effective_size": 1.0,
+                       "path": {"preset": "uniaxial_tension", "strain": 1e-3, "increments": "10"}})
+    with pytest.raises(ecm.InputError, match=r"^<dict>: unknown key 'bogus' in 'material'"):
+        ecm.run_point({"name": "x", "material": {"file": "den-concrete.yaml", "bogus": 1}, "effective_size": 1.0,
                        "path": {"preset": "uniaxial_tension", "strain": 1e-3, "increments": 10}})
 
 
@@ -67,3 +74,35 @@ def test_the_snapback_study_finds_the_closed_form_sizes(source):
     # every H dissipates G_F under opening control, and strain control snaps back beyond the size above
     np.testing.assert_allclose(rows["energy_ratio"], 1.0, atol=0.01)
     assert np.all((rows["strain_control_snapback"] == 1) == (rows["H"] > study["snapback_size"]))
+
+
+def test_numpy_scalars_in_a_scene_dict_are_numbers(source):
+    # Issue: path.increments = np.int64(10) gave "Object of type int64 is not JSON serializable".
+    scene = {"name": "np", "material": {"file": str(source / "data/materials/den-concrete.yaml")},
+             "effective_size": np.float64(10.0),
+             "path": {"preset": "uniaxial_tension", "strain": np.float32(1e-3), "increments": np.int64(10)}}
+    plain = dict(scene, effective_size=10.0, path={"preset": "uniaxial_tension", "strain": 1e-3, "increments": 10})
+    a, b = ecm.run_point(scene), ecm.run_point(plain)
+    for column in b.history:
+        assert np.array_equal(a.history[column], b.history[column]), column
+
+
+def test_load_scene_reads_as_the_tools_read(source, tmp_path):
+    # '1e-6' is a number to the tools (YAML 1.2) and a string to PyYAML; load_scene reads as the
+    # tools do, and resolves the material file next to the scene from any working directory.
+    scene = ecm.load_scene(source / "data/point/uniaxial-tension-H10.yaml")
+    assert isinstance(scene["effective_size"], float) and isinstance(scene["path"]["increments"], int)
+    assert scene["material"]["file"] == "den-concrete.yaml"  # not next to the scene: the data folder's, as the tools find it
+    (tmp_path / "m.yaml").write_text((source / "data/materials/den-concrete.yaml").read_text())
+    (tmp_path / "s.yaml").write_text("name: s\nmaterial: {file: m.yaml}\neffective_size: 10.0\n"
+                                     "path: {preset: uniaxial_tension, strain: 1e-3, increments: 10}\n")
+    assert ecm.load_scene(tmp_path / "s.yaml")["material"]["file"] == str(tmp_path / "m.yaml")
+    from_dict = ecm.run_point(scene)
+    from_file = ecm.run_point(source / "data/point/uniaxial-tension-H10.yaml")
+    for column in from_file.history:
+        assert np.array_equal(from_dict.history[column], from_file.history[column]), column
+    text = tmp_path / "t.yaml"
+    text.write_text("a: 1e-6\nb: '1e-6'\nc: 10\nd: true\ne: [1, x, .inf]\nf: ~\n")
+    assert ecm.load_scene(text) == {"a": 1e-6, "b": "1e-6", "c": 10, "d": True, "e": [1, "x", float("inf")], "f": None}
+    with pytest.raises(ecm.InputError, match="nope.yaml"):
+        ecm.load_scene(tmp_path / "nope.yaml")

@@ -1,0 +1,38 @@
+# scripts/paper.sh builds the tools it runs and nothing else (not the whole tree: tests,
+# benchmarks and the Python module took most of its time on a fresh machine). Every
+# ./build/<folder>/<tool> it runs, and ecm-mpm (run by scripts/den.sh), must be among the
+# targets of its one `cmake --build ... --target` line; a build line without --target fails.
+# Run as: cmake -DSCRIPT=<scripts/paper.sh> -P paper_targets.cmake
+cmake_policy(SET CMP0057 NEW)  # if(IN_LIST)
+if(NOT DEFINED SCRIPT)
+  message(FATAL_ERROR "usage: cmake -DSCRIPT=<scripts/paper.sh> -P paper_targets.cmake")
+endif()
+file(READ "${SCRIPT}" text)
+string(REGEX MATCHALL "cmake --build[^\n]*" builds "${text}")
+list(LENGTH builds count)
+if(NOT count EQUAL 1)
+  message(FATAL_ERROR "paper.sh: expected one `cmake --build` line, found ${count}")
+endif()
+if(NOT builds MATCHES "--target")
+  message(FATAL_ERROR "paper.sh builds every target: ${builds}")
+endif()
+string(REGEX MATCHALL "targets(\\+)?=\\([^)]*\\)" lists "${text}")
+set(targets "")
+foreach(l IN LISTS lists)
+  string(REGEX REPLACE "targets(\\+)?=\\(([^)]*)\\)" "\\2" names "${l}")
+  string(REPLACE " " ";" names "${names}")
+  list(APPEND targets ${names})
+endforeach()
+string(REGEX MATCHALL "\\./build/[a-z_]+/(ecm-[a-z]+)" runs "${text}")
+set(tools ecm-mpm)  # scripts/den.sh runs ./build/mpm/ecm-mpm
+foreach(r IN LISTS runs)
+  string(REGEX REPLACE ".*/" "" tool "${r}")
+  list(APPEND tools ${tool})
+endforeach()
+list(REMOVE_DUPLICATES tools)
+foreach(tool IN LISTS tools)
+  if(NOT tool IN_LIST targets)
+    message(FATAL_ERROR "paper.sh runs ${tool} but does not build it (targets: ${targets})")
+  endif()
+endforeach()
+message(STATUS "paper.sh builds ${targets} and runs ${tools}")
