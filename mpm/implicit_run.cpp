@@ -12,6 +12,7 @@
 #include "mpm/implicit/implicit_checkpoint.hpp"
 #include "mpm/implicit/implicit_solver.hpp"
 #include "mpm/output/run_files.hpp"
+#include "mpm/setup/gauge_points.hpp"
 
 namespace ecm::mpm {
 
@@ -47,6 +48,7 @@ class ImplicitStepper final : public Stepper {
   ImplicitStepper(const Scene& scene, const RunOptions& options)
       : scene_(scene), settings_(*scene.solver.implicit), solver_(scene, options.threads) {
     if (settings_.indirect) control_ = indirectControl(scene, reachedNodes(solver_.setup(), solver_.particles()));
+    gaugePoints_ = locateGauges(scene, solver_.particles());
     // The progress: load steps of pseudo-time to `from_` (the end time without indirect
     // control), then the indirect control's steps of opening: `from_` plus the opening (mm).
     from_ = settings_.indirect ? settings_.indirect->from : scene.endTime;
@@ -70,6 +72,7 @@ class ImplicitStepper final : public Stepper {
 
   void advance() override {
     const bool controlled = settings_.indirect && book_.progress >= from_ * (1.0 - 1e-12);
+    if (controlled && !settings_.indirect->gauge.empty()) gaugeControl();
     last_ = controlled ? solver_.advance(control_, settings_.indirect->step, total_ - book_.progress)
                        : solver_.advance(settings_.loadStep, from_ - book_.progress);
     book_.progress += last_.size;
@@ -151,6 +154,30 @@ class ImplicitStepper final : public Stepper {
 
  private:
   double spacing() const { return scene_.outputInterval * scene_.snapshotEvery; }
+  // Indirect control on a gauge: its reading's increment over a step is linear in the nodes'
+  // increments through the shape functions of its particles at the step's start,
+  // d reading = sum_i N_i(x_to) du_i - sum_i N_i(x_at) du_i: the control's terms, made anew
+  // before every step as the particles move.
+  void gaugeControl() {
+    const auto g = static_cast<std::size_t>(std::find_if(scene_.gauges.begin(), scene_.gauges.end(), [&](const Gauge& x) {
+                                              return x.name == settings_.indirect->gauge;
+                                            }) - scene_.gauges.begin());
+    const Gauge& gauge = scene_.gauges[g];
+    const GaugePoints& points = gaugePoints_[g];
+    const StepSetup& setup = solver_.setup();
+    const Grid& grid = scene_.grid;
+    const int support = supportSize(scene_.solver.shapeFunction);
+    control_.terms.clear();
+    const auto add = [&](std::size_t particle, double sign) {
+      Stencil s;
+      if (!computeStencil(scene_.solver.shapeFunction, grid, setup.halfWidth, solver_.particles().position[particle], s)) return;
+      for (int j = 0; j < support; ++j)
+        for (int k = 0; k < support; ++k)
+          if (const double w = s.wx[k] * s.wy[j]; w != 0.0) control_.terms.push_back({2 * (s.base + j * grid.nodesX() + k) + gauge.component, sign * w});
+    };
+    if (gauge.to) add(points.to, 1.0);
+    add(points.at, gauge.to ? -1.0 : 1.0);
+  }
   long cracked() const {
     long n = 0;
     for (const auto b : solver_.particles().band) n += b >= 0 ? 1 : 0;
@@ -161,6 +188,7 @@ class ImplicitStepper final : public Stepper {
   const ImplicitSettings& settings_;
   ImplicitSolver solver_;  // throws on a scene it cannot seed, before any output
   IndirectControl control_;
+  std::vector<GaugePoints> gaugePoints_;  // of the scene's gauges (for control on a gauge)
   double from_ = 0.0, total_ = 0.0;
   ImplicitBookkeeping book_;
   ImplicitStepReport last_;  // of the last load step (zero before the first)

@@ -16,6 +16,7 @@
 #include "mpm/output/run_files.hpp"
 #include "mpm/output/vtu_writer.hpp"
 #include "mpm/scene/stop_when.hpp"
+#include "mpm/setup/gauge_points.hpp"
 
 namespace ecm::mpm {
 
@@ -39,10 +40,11 @@ class RunLoop {
       : scene_(scene), options_(options), stepper_(stepper), start_(WallClock::now()),
         checkpointFile_(checkpointPath(options.outputDir)), lastCheckpoint_(start_) {
     result_.particles = stepper.particles().size();
+    gaugePoints_ = locateGauges(scene, stepper.particles());  // from the seed positions: also after a restart
     if (options.restart) readRestart();  // before anything in the folder is touched
     io::prepareOutputDir(options.outputDir);
     openOutputs();
-    if (scene.stopWhen) {
+    if (scene.stopWhen && scene.stopWhen->gauge.empty()) {
       watched_ = findCondition(scene.conditions, scene.stopWhen->condition).value();  // validated
       watchedComponent_ = drivenComponent(scene.conditions.at(watched_));
     }
@@ -125,6 +127,14 @@ class RunLoop {
   // The scene's stop_when (mpm/scene/stop_when.hpp), at a history row.
   void watchStop() {
     if (!scene_.stopWhen) return;
+    if (!scene_.stopWhen->gauge.empty()) {  // a gauge that reaches its value
+      const double reading = std::abs(gaugeReading(scene_.stopWhen->gauge));
+      if (stepper_.progress() >= scene_.stopWhen->afterTime && reading >= scene_.stopWhen->gaugeReaches) {
+        result_.endedByStopWhen = true;
+        result_.stopLoad = 0.0;  // (a gauge stop has no load)
+      }
+      return;
+    }
     const double load = stepper_.conditions()[watched_].reaction[watchedComponent_];
     if (watch_.observe(*scene_.stopWhen, stepper_.progress(), load)) {
       result_.endedByStopWhen = true;
@@ -139,10 +149,28 @@ class RunLoop {
     for (const Vec2& f : stepper_.appliedLoads()) result_.peakLoad = std::max(result_.peakLoad, f.norm());
   }
 
+  // --- gauges (mpm/scene/gauge.hpp): columns <name>_mm after the solver's ---
+  double gaugeReading(const std::string& name) const {
+    for (std::size_t g = 0; g < scene_.gauges.size(); ++g)
+      if (scene_.gauges[g].name == name) return mpm::gaugeReading(scene_.gauges[g], gaugePoints_[g], stepper_.particles());
+    return 0.0;  // (validated: the name is a gauge's)
+  }
+  std::vector<std::string> historyColumns() const {
+    std::vector<std::string> columns = stepper_.historyColumns();
+    for (const Gauge& g : scene_.gauges) columns.push_back(g.name + "_mm");
+    return columns;
+  }
+  std::vector<double> historyRow() const {
+    std::vector<double> row = stepper_.historyRow();
+    for (std::size_t g = 0; g < scene_.gauges.size(); ++g)
+      row.push_back(mpm::gaugeReading(scene_.gauges[g], gaugePoints_[g], stepper_.particles()));
+    return row;
+  }
+
   // --- output ---
   void openOutputs() {
     const std::filesystem::path& dir = options_.outputDir;
-    history_ = openHistory(dir, stepper_.historyColumns(), checkpointFile_, options_.restart ? &stepper_.book().history : nullptr);
+    history_ = openHistory(dir, historyColumns(), checkpointFile_, options_.restart ? &stepper_.book().history : nullptr);
     if (options_.snapshots) {
       snapshots_ = std::make_unique<VtuSeries>(dir);
       if (options_.restart) snapshots_->resume(stepper_.book().snapshotTimes);
@@ -157,7 +185,7 @@ class RunLoop {
   // row count survives a restart, so the series goes on in step.
   void output(bool forceSnapshot = false) {
     const std::size_t row = history_->rows();
-    history_->row(stepper_.historyRow());
+    history_->row(historyRow());
     history_->flush();
     if (snapshots_ && (forceSnapshot || stepper_.snapshotDue(row) || finished())) snapshot();
   }
@@ -236,7 +264,21 @@ class RunLoop {
     j["steps"] = r.steps;
     j["particles"] = r.particles;
     j["checkpoints_written"] = r.checkpoints;
-    if (scene_.stopWhen) {
+    if (!scene_.gauges.empty()) {  // the material points each gauge follows (the seeds nearest to its points)
+      nlohmann::json gauges = nlohmann::json::array();
+      const Particles& p = stepper_.particles();
+      for (std::size_t g = 0; g < scene_.gauges.size(); ++g) {
+        const GaugePoints& at = gaugePoints_[g];
+        nlohmann::json one = {{"name", scene_.gauges[g].name}, {"at_mm", {p.origin[at.at][0], p.origin[at.at][1]}}};
+        if (scene_.gauges[g].to) one["to_mm"] = {p.origin[at.to][0], p.origin[at.to][1]};
+        one["final_mm"] = mpm::gaugeReading(scene_.gauges[g], at, p);
+        gauges.push_back(one);
+      }
+      j["gauges"] = gauges;
+    }
+    if (scene_.stopWhen && !scene_.stopWhen->gauge.empty()) {
+      j["stop_when"] = {{"gauge", scene_.stopWhen->gauge}, {"reaches_mm", scene_.stopWhen->gaugeReaches}, {"met", r.endedByStopWhen}};
+    } else if (scene_.stopWhen) {
       const StopWhen& w = *scene_.stopWhen;
       j["stop_when"] = {{"condition", w.condition},
                         {"load_below", w.loadBelow},
@@ -273,6 +315,7 @@ class RunLoop {
   std::size_t watched_ = 0;
   int watchedComponent_ = 0;
   bool anyDriven_ = false;
+  std::vector<GaugePoints> gaugePoints_;
   // checkpoint
   long checkpointStep_ = -1;  // the step of the checkpoint on disk
   WallClock::time_point lastCheckpoint_;

@@ -1,5 +1,6 @@
 #include "mpm/scene/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -95,7 +96,9 @@ void validateImplicit(const Scene& s) {
     if (!findCondition(s.conditions, name)) throw ValueError("solver.control.indirect.driven", "no condition named '" + name + "'");
   if (!c.reference.allFinite() || c.reference.squaredNorm() == 0.0)
     throw ValueError("solver.control.indirect.reference", "must be finite and not zero (mm per unit load factor)");
-  if (c.terms.empty()) throw ValueError("solver.control.indirect.opening", "names no node");
+  if (!c.gauge.empty() && std::none_of(s.gauges.begin(), s.gauges.end(), [&](const Gauge& g) { return g.name == c.gauge; }))
+    throw ValueError("solver.control.indirect.gauge", "no gauge is named '" + c.gauge + "'");
+  if (c.gauge.empty() && c.terms.empty()) throw ValueError("solver.control.indirect.opening", "names no node");
   bool anyCoefficient = false;
   for (std::size_t i = 0; i < c.terms.size(); ++i) {
     const Vec2 local = (c.terms[i].at - s.grid.origin).cwiseQuotient(s.grid.cellSize);
@@ -114,7 +117,7 @@ void validateImplicit(const Scene& s) {
     if (!std::isfinite(c.terms[i].coefficient)) throw ValueError(item("solver.control.indirect.opening", i), "coefficient must be finite");
     anyCoefficient = anyCoefficient || c.terms[i].coefficient != 0.0;
   }
-  if (!anyCoefficient)
+  if (c.gauge.empty() && !anyCoefficient)
     throw ValueError("solver.control.indirect.opening", "every coefficient is 0: the opening would not move whatever the displacements");
   requireRange("solver.control.indirect.step", c.step, 0.0, INFINITY, false, false);
   requireRange("solver.control.indirect.until", c.until, c.step, INFINITY, true, false);
@@ -151,7 +154,23 @@ void validateOutput(const Scene& s) {
   if (s.checkpoint.everySteps < 0 || s.checkpoint.everySteps > 2147483647L)
     throw ValueError("checkpoint.every_steps", "must be >= 1 (0: off)");
   requireRange("checkpoint.every_minutes", s.checkpoint.everyMinutes, 0.0, INFINITY, true, false);
-  if (s.stopWhen) {
+  for (std::size_t i = 0; i < s.gauges.size(); ++i) {
+    const Gauge& g = s.gauges[i];
+    if (g.name.empty()) throw ValueError(item("gauges", i) + ".name", "must not be empty");
+    for (std::size_t j = 0; j < i; ++j)
+      if (s.gauges[j].name == g.name) throw ValueError(item("gauges", i) + ".name", "'" + g.name + "' is defined twice");
+    if (!g.at.allFinite() || (g.to && !g.to->allFinite())) throw ValueError(item("gauges", i), "its points must be finite");
+    if (g.to && *g.to == g.at) throw ValueError(item("gauges", i) + ".to", "is the same point as at: the gauge would read 0");
+  }
+  if (s.stopWhen && !s.stopWhen->gauge.empty()) {
+    const StopWhen& w = *s.stopWhen;
+    if (std::none_of(s.gauges.begin(), s.gauges.end(), [&](const Gauge& g) { return g.name == w.gauge; }))
+      throw ValueError("stop_when.gauge", "no gauge is named '" + w.gauge + "'");
+    requireRange("stop_when.reaches", w.gaugeReaches, 0.0, INFINITY, false, false);
+    requireRange("stop_when.after_time", w.afterTime, 0.0, INFINITY, true, false);
+    if (!(s.outputInterval > 0.0) && !s.solver.implicit)  // implicit runs have a row per load step
+      throw ValueError("stop_when", "is checked at the output rows: needs output_interval > 0");
+  } else if (s.stopWhen) {
     const StopWhen& w = *s.stopWhen;
     if (!findCondition(s.conditions, w.condition))
       throw ValueError("stop_when.condition", "no condition is named '" + w.condition + "'");

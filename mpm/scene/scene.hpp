@@ -8,6 +8,7 @@
 
 #include "material/material.hpp"
 #include "mpm/scene/boundary.hpp"
+#include "mpm/scene/gauge.hpp"
 #include "mpm/scene/geometry.hpp"
 #include "mpm/core/grid.hpp"
 #include "mpm/core/shape_function.hpp"
@@ -33,6 +34,7 @@ struct Scene {
   int particlesPerCell = 2;  // k: k x k particles per cell
   std::vector<NodeCondition> conditions;
   std::vector<Load> loads;
+  std::vector<Gauge> gauges;  // history.csv columns <name>_mm (mpm/scene/gauge.hpp)
   SolverSettings solver;
   double endTime = 0.0;         // s: the latest end
   std::optional<StopWhen> stopWhen;  // an earlier end by a condition's load (mpm/scene/stop_when.hpp)

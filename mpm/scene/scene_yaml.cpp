@@ -104,13 +104,17 @@ ImplicitSettings readImplicitSettings(const YamlMap& m) {
     ImplicitSettings::Indirect ind;
     ind.driven = i.scalarSequence<std::string>("driven");
     if (i.has("reference")) ind.reference = vec2(i, "reference");
-    for (const YamlMap& t : i.sequence("opening")) {
-      ControlTerm term;
-      term.at = vec2(t, "node");
-      term.component = t.getEnum("component", {"x", "y"}) == "x" ? 0 : 1;
-      term.coefficient = t.getOr<double>("coefficient", 1.0);
-      t.finish();
-      ind.terms.push_back(term);
+    if (i.has("opening") == i.has("gauge")) i.failHere("control.indirect needs exactly one of opening: [...] and gauge: NAME");
+    if (i.has("gauge")) ind.gauge = i.get<std::string>("gauge");
+    if (i.has("opening")) {
+      for (const YamlMap& t : i.sequence("opening")) {
+        ControlTerm term;
+        term.at = vec2(t, "node");
+        term.component = t.getEnum("component", {"x", "y"}) == "x" ? 0 : 1;
+        term.coefficient = t.getOr<double>("coefficient", 1.0);
+        t.finish();
+        ind.terms.push_back(term);
+      }
     }
     ind.step = i.get<double>("step");
     ind.until = i.get<double>("until");
@@ -280,15 +284,31 @@ CheckpointSettings readCheckpoint(const YamlMap& m) {
   return c;
 }
 
-// stop_when: {condition: NAME, load_below: FRACTION, after_time: T}; `conditions` are the
-// scene's, read before, so that the name can be checked at this map's line.
+// stop_when: {condition: NAME, load_below: FRACTION, after_time: T} or {gauge: NAME, reaches: MM}.
 StopWhen readStopWhen(const YamlMap& m) {
   StopWhen w;
-  w.condition = m.get<std::string>("condition");
-  w.loadBelow = m.get<double>("load_below");
+  if (m.has("gauge") == m.has("condition")) m.failHere("stop_when needs exactly one of condition: NAME and gauge: NAME");
+  if (m.has("gauge")) {
+    w.gauge = m.get<std::string>("gauge");
+    w.gaugeReaches = m.get<double>("reaches");
+  } else {
+    w.condition = m.get<std::string>("condition");
+    w.loadBelow = m.get<double>("load_below");
+  }
   w.afterTime = m.getOr<double>("after_time", w.afterTime);
   m.finish();
   return w;
+}
+
+// gauges: [{name: NAME, at: [x, y], to: [x, y], component: x | y}] (to: optional).
+Gauge readGauge(const YamlMap& m) {
+  Gauge g;
+  g.name = m.get<std::string>("name");
+  g.at = vec2(m, "at");
+  if (m.has("to")) g.to = vec2(m, "to");
+  g.component = m.getEnum("component", {"x", "y"}) == "x" ? 0 : 1;
+  m.finish();
+  return g;
 }
 
 }  // namespace
@@ -338,6 +358,8 @@ Scene readScene(const YamlMap& m) {
     for (const YamlMap& c : m.sequence("conditions")) s.conditions.push_back(readCondition(c));
   if (m.has("loads"))
     for (const YamlMap& l : m.sequence("loads")) s.loads.push_back(readLoad(l));
+  if (m.has("gauges"))
+    for (const YamlMap& g : m.sequence("gauges")) s.gauges.push_back(readGauge(g));
   if (m.has("stop_when")) s.stopWhen = readStopWhen(m.child("stop_when"));
   m.finish();
   try {

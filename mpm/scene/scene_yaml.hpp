@@ -79,6 +79,13 @@
 //     load_below: 0.1           #   driven component is below load_below (in (0, 1)) times its
 //     after_time: 5e-4          #   peak over the rows so far (s, >= 0, < end_time; default 0);
 //                               #   needs output_interval > 0
+//     (or: stop_when: {gauge: delta, reaches: 0.1}: at the first row where that gauge reads at
+//      least 0.1 mm in magnitude)
+//   gauges:                     # optional: history.csv columns NAME_mm (mpm/scene/gauge.hpp)
+//     - {name: delta, at: [50, 67.5], to: [50, 132.5], component: y}  # u_y(to) - u_y(at), mm
+//     - {name: tip, at: [100, 5], component: x}                       # u_x of one material point
+//     # each point follows the particle seeded nearest to it (within one particle spacing, else refused);
+//     # solver.control.indirect may name a gauge (gauge: delta) instead of opening: [...]
 //
 // Histories: {type: hold, value: V} | {type: linear_ramp | smooth_ramp, value: V, time: T}
 //          | {type: table, points: [[t0, v0], [t1, v1], ...]}

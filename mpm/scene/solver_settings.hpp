@@ -69,6 +69,7 @@ struct ImplicitSettings {
     std::vector<std::string> driven;  // conditions moved by the load factor
     Vec2 reference = Vec2(0.0, 1.0);  // their displacement per unit load factor (mm)
     std::vector<ControlTerm> terms;   // tau = sum of the terms
+    std::string gauge;                // or: tau = that gauge's reading (mpm/scene/gauge.hpp; then no terms)
     double step = 0.0;                // d tau per load step (mm)
     double until = 0.0;               // tau at the end (mm)
     double from = 0.0;                // pseudo-time (s) of the load steps before the control takes over (load_step)

@@ -14,6 +14,11 @@ struct StopWhen {
   std::string condition;   // the name of the condition whose reaction is watched
   double loadBelow = 0.1;  // fraction of the peak of that reaction, in (0, 1)
   double afterTime = 0.0;  // s: rows before this time only raise the peak (e.g. a preload phase)
+  // Or a gauge (mpm/scene/gauge.hpp; then `condition` is empty): the run ends at the first row
+  // where the gauge reads at least `gaugeReaches` in magnitude (mm), as a test is pulled until
+  // its gauge reaches a value.
+  std::string gauge;
+  double gaugeReaches = 0.0;
 };
 
 // The watch over the output rows: the peak of |load| so far, and whether the stop is met.
