@@ -18,7 +18,7 @@ void bindPoint3D(py::module_& m) {
         const bool path = py::isinstance<py::str>(scene) || py::isinstance(scene, py::module_::import("os").attr("PathLike"));
         if (!path && !py::isinstance<py::dict>(scene)) throw py::type_error("a point scene is a path or a dict");
         const driver::PointScene3 s = path ? driver::loadPointScene3(scene.cast<std::filesystem::path>())
-                                           : driver::readPointScene3(io::parseYaml(yamlText(scene), "<dict>"));
+                                           : readDict(scene, "<dict>", [](const io::YamlMap& m) { return driver::readPointScene3(m); });
         const std::filesystem::path dir = io::prepareOutputDir(out);
         driver::PointRun3 run;
         {
