@@ -12,9 +12,9 @@ install(TARGETS ecm_material ecm_calibration EXPORT ecmTargets
         LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/material DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/ecm FILES_MATCHING PATTERN "*.hpp")
 install(FILES ${PROJECT_BINARY_DIR}/generated/ecm/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/ecm/ecm)
-# The installed headers cite docs/model.md (the model's decisions) and docs/material.md; the
+# The installed headers cite docs/model.md (the model's decisions), docs/material.md and docs/fe-codes.md (the 3D point and the UMAT); the
 # consumer's page is docs/cpp.md. They go to share/doc/ecm/.
-install(FILES docs/model.md docs/material.md docs/cpp.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
+install(FILES docs/model.md docs/material.md docs/fe-codes.md docs/cpp.md DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(FILES calibration/calibration_error.hpp calibration/fracture_energy.hpp calibration/softening_curve.hpp
               calibration/softening_fit.hpp calibration/target_curve.hpp
         DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/ecm/calibration)
