@@ -141,6 +141,9 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   app.add_option("-o,--out", out, "output folder (default: rve-out)");
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return ecm::io::errorLine("ecm-rve", e.what()) + "Run with --help for more information.\n";
+  });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -150,12 +153,12 @@ int main(int argc, char** argv) {
   try {
     return run(input, out, running);
   } catch (const ecm::io::InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    ecm::io::printError("ecm-rve", e.what());
     return ecm::io::kExitBadInput;
   } catch (const ecm::io::OutputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    ecm::io::printError("ecm-rve", e.what());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s: %s\n", input.c_str(), e.what());
+    ecm::io::printError("ecm-rve", input + ": " + e.what());
   }
   return running ? ecm::io::kExitRunFailed : ecm::io::kExitBadInput;
 }

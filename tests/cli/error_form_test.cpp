@@ -46,6 +46,9 @@ std::vector<Case> cases(const TempDir& tmp) {
 #ifdef ECM_MPM
   c.push_back({"ecm-mpm", ECM_MPM, {"--no-such-option", missing, folder, bad, bad + " --threads -1", bad + " --max-steps 0"}});
 #endif
+#ifdef ECM_RVE
+  c.push_back({"ecm-rve", ECM_RVE, {"--no-such-option", missing, bad}});
+#endif
 #ifdef ECM_STUDY
   c.push_back({"ecm-study", ECM_STUDY, {"--no-such-option", missing, folder, bad, bad + " --threads 0"}});
 #endif
