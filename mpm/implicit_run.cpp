@@ -25,7 +25,14 @@ namespace {
 IndirectControl indirectControl(const Scene& scene, const std::vector<std::uint8_t>& reached) {
   const ImplicitSettings::Indirect& in = *scene.solver.implicit->indirect;
   IndirectControl c;
-  for (const std::string& name : in.driven) c.driven.push_back(*findCondition(scene.conditions, name));
+  for (const std::string& name : in.driven) {  // conditions and platens (validated: each is one of them)
+    if (const auto i = findCondition(scene.conditions, name)) {
+      c.driven.push_back(*i);
+      continue;
+    }
+    for (std::size_t p = 0; p < scene.platens.size(); ++p)
+      if (scene.platens[p].name == name) c.drivenPlatens.push_back(p);
+  }
   c.reference = in.reference;
   const Grid& g = scene.grid;
   for (std::size_t k = 0; k < in.terms.size(); ++k) {
@@ -57,6 +64,7 @@ class ImplicitStepper final : public Stepper {
 
   const Particles& particles() const override { return solver_.particles(); }
   const std::vector<ConditionState>& conditions() const override { return solver_.conditions(); }
+  const std::vector<PlatenState>& platens() const override { return solver_.platens(); }
   std::vector<Vec2> appliedLoads() const override {
     std::vector<Vec2> f;
     for (const Load& l : scene_.loads) f.push_back(l.force * l.history(solver_.time()));

@@ -123,6 +123,10 @@ int main(int argc, char** argv) {
                  r.completed ? (r.endedByStopWhen ? "completed (stop_when met)" : "completed")
                              : (r.stopped ? "STOPPED" : "FAILED"),
                  r.steps, r.particles, r.peakLoad, r.wallTime, options.outputDir.string().c_str());
+    if (r.stopped && r.checkpoint.empty()) {  // (a scene with platens writes no checkpoint)
+      std::fprintf(stderr, "stopped at step %ld (%s); no checkpoint to resume from\n", r.steps, stopRequested.load() ? "signal" : "--max-steps");
+      return ecm::io::kExitStopped;
+    }
     if (r.stopped) {
       std::fprintf(stderr, "stopped at step %ld (%s); checkpoint %s\nresume with: %s\n", r.steps,
                    stopRequested.load() ? "signal" : "--max-steps", r.checkpoint.string().c_str(),

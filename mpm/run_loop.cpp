@@ -49,6 +49,8 @@ class RunLoop {
       watchedComponent_ = drivenComponent(scene.conditions.at(watched_));
     }
     for (const auto& c : scene.conditions) anyDriven_ = anyDriven_ || isDriven(c);
+    for (const auto& p : scene.platens) anyDriven_ = anyDriven_ || displacementDriven(p, kPlatenX) || displacementDriven(p, kPlatenY);
+    platenPeaks_.assign(scene.platens.size(), Eigen::Vector3d::Zero());
   }
 
   RunResult execute() {
@@ -147,9 +149,16 @@ class RunLoop {
       if (isDriven(scene_.conditions[i]) || !anyDriven_)
         result_.peakLoad = std::max(result_.peakLoad, stepper_.conditions()[i].reaction.norm());
     for (const Vec2& f : stepper_.appliedLoads()) result_.peakLoad = std::max(result_.peakLoad, f.norm());
+    for (std::size_t i = 0; i < scene_.platens.size(); ++i) {  // a platen's force on its driven translations
+      const Eigen::Vector3d& f = stepper_.platens()[i].force;
+      platenPeaks_[i] = platenPeaks_[i].cwiseMax(f.cwiseAbs());
+      const Platen& p = scene_.platens[i];
+      const Vec2 driven(displacementDriven(p, kPlatenX) ? f[0] : 0.0, displacementDriven(p, kPlatenY) ? f[1] : 0.0);
+      result_.peakLoad = std::max(result_.peakLoad, driven.norm());
+    }
   }
 
-  // --- gauges (mpm/scene/gauge.hpp): columns <name>_mm after the solver's ---
+  // --- platens (mpm/scene/platen.hpp) and gauges (mpm/scene/gauge.hpp): their columns after the solver's ---
   double gaugeReading(const std::string& name) const {
     for (std::size_t g = 0; g < scene_.gauges.size(); ++g)
       if (scene_.gauges[g].name == name) return mpm::gaugeReading(scene_.gauges[g], gaugePoints_[g], stepper_.particles());
@@ -157,11 +166,17 @@ class RunLoop {
   }
   std::vector<std::string> historyColumns() const {
     std::vector<std::string> columns = stepper_.historyColumns();
+    for (const Platen& p : scene_.platens)
+      for (const char* c : {"_ux_mm", "_uy_mm", "_rotation_rad", "_Fx_N", "_Fy_N", "_M_Nmm"}) columns.push_back(p.name + c);
     for (const Gauge& g : scene_.gauges) columns.push_back(g.name + "_mm");
     return columns;
   }
   std::vector<double> historyRow() const {
     std::vector<double> row = stepper_.historyRow();
+    for (const PlatenState& p : stepper_.platens()) {
+      row.insert(row.end(), p.displacement.data(), p.displacement.data() + 3);
+      row.insert(row.end(), p.force.data(), p.force.data() + 3);
+    }
     for (std::size_t g = 0; g < scene_.gauges.size(); ++g)
       row.push_back(mpm::gaugeReading(scene_.gauges[g], gaugePoints_[g], stepper_.particles()));
     return row;
@@ -223,6 +238,7 @@ class RunLoop {
 
   // --- checkpoint ---
   void readRestart() {
+    if (!scene_.platens.empty()) throw CheckpointError("a scene with platens cannot be resumed: checkpoints do not hold the platens' state");
     stepper_.readCheckpoint(checkpointFile_, options_.sceneHash);
     const RunBook& book = stepper_.book();
     result_.restartedFrom = stepper_.steps();
@@ -240,6 +256,10 @@ class RunLoop {
            (every.everyMinutes > 0.0 && secondsSince(lastCheckpoint_) >= 60.0 * every.everyMinutes);
   }
   void checkpoint() {
+    // The checkpoint format does not hold the platens' state (mpm/scene/platen.hpp): a scene with
+    // platens writes none (Scene::validate refuses its checkpoint settings; stops and failures
+    // leave no checkpoint to resume from).
+    if (!scene_.platens.empty()) return;
     if (checkpointStep_ == stepper_.steps()) return;
     history_->flush();
     RunBook& book = stepper_.book();
@@ -275,6 +295,19 @@ class RunLoop {
         gauges.push_back(one);
       }
       j["gauges"] = gauges;
+    }
+    if (!scene_.platens.empty()) {  // where each platen ended and the largest force it put on the specimen
+      nlohmann::json platens = nlohmann::json::array();
+      for (std::size_t i = 0; i < scene_.platens.size(); ++i) {
+        const PlatenState& p = stepper_.platens()[i];
+        platens.push_back({{"name", scene_.platens[i].name},
+                           {"reference_mm", {p.reference[0], p.reference[1]}},
+                           {"nodes", p.nodes.size()},
+                           {"final_displacement", {p.displacement[0], p.displacement[1], p.displacement[2]}},
+                           {"final_force", {p.force[0], p.force[1], p.force[2]}},
+                           {"peak_abs_force", {platenPeaks_[i][0], platenPeaks_[i][1], platenPeaks_[i][2]}}});
+      }
+      j["platens"] = platens;  // displacements mm, mm, rad; forces N, N, N mm
     }
     if (scene_.stopWhen && !scene_.stopWhen->gauge.empty()) {
       j["stop_when"] = {{"gauge", scene_.stopWhen->gauge}, {"reaches_mm", scene_.stopWhen->gaugeReaches}, {"met", r.endedByStopWhen}};
@@ -316,6 +349,7 @@ class RunLoop {
   int watchedComponent_ = 0;
   bool anyDriven_ = false;
   std::vector<GaugePoints> gaugePoints_;
+  std::vector<Eigen::Vector3d> platenPeaks_;  // per platen: the largest |force| of each degree of freedom so far
   // checkpoint
   long checkpointStep_ = -1;  // the step of the checkpoint on disk
   WallClock::time_point lastCheckpoint_;

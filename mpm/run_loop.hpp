@@ -24,6 +24,7 @@ class Stepper {
   // --- what the loop watches ---
   virtual const Particles& particles() const = 0;
   virtual const std::vector<ConditionState>& conditions() const = 0;
+  virtual const std::vector<PlatenState>& platens() const = 0;
   virtual std::vector<Vec2> appliedLoads() const = 0;  // N, per scene load, now
   virtual long steps() const = 0;
   virtual double time() const = 0;  // s (implicit: pseudo-time), for the row callback

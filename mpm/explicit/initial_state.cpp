@@ -40,6 +40,7 @@ MpmState initialState(const StepSetup& setup, Particles particles) {
 
   st.conditions = conditionStates(scene);
   st.loads = loadStates(scene, st.particles);
+  st.platens = platenStates(scene);
   return st;
 }
 

@@ -45,6 +45,12 @@ void updateGrid(const StepSetup& setup, const Clock& clock, GridFields& grid, st
 // v = p/m with the velocity conditions, no forces (USF strain, MUSL remap).
 void gridVelocities(const StepSetup& setup, const Clock& clock, GridFields& grid,
                     std::vector<ConditionState>& conditions);
+// The rigid platens (platen_update.cpp): their nodes' velocities made one rigid body's, after
+// updateGrid (withForces: the step's forces, damping and the force histories act; given the
+// totals, the platens' forces and displacements are recorded and their work added) or after
+// gridVelocities (no forces).
+void applyPlatens(const StepSetup& setup, const Clock& clock, GridFields& grid, std::vector<PlatenState>& platens,
+                  RunTotals* totals, bool withForces);
 // G2P: velocities (PIC/FLIP), positions and, withStrainIncrements, the strain increments.
 void gridToParticle(const StepSetup& setup, const Clock& clock, const GridFields& grid, Particles& particles,
                     bool withStrainIncrements);

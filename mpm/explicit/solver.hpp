@@ -49,6 +49,7 @@ class Solver {
   const Particles& particles() const { return state_.particles; }
   const GridFields& grid() const { return state_.grid; }
   const std::vector<ConditionState>& conditions() const { return state_.conditions; }
+  const std::vector<PlatenState>& platens() const { return state_.platens; }
   const std::vector<LoadState>& loads() const { return state_.loads; }
   double time() const { return state_.clock.time; }
   long step() const { return state_.clock.step; }

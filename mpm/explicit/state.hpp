@@ -37,6 +37,7 @@ struct MpmState {
   ScatterOrder order;  // the order of the scatter (mpm/explicit/scatter_order.hpp)
   std::vector<ConditionState> conditions;  // one per scene condition
   std::vector<LoadState> loads;            // one per scene load
+  std::vector<PlatenState> platens;        // one per scene platen
   Clock clock;
   RunTotals totals;
 };

@@ -47,6 +47,7 @@ void Solver::advance() {
     timed(StepPhase::Grid, [&] {
       addLoads(s, clock.time, p, grid, st.loads);
       updateGrid(s, clock, grid, st.conditions, st.totals);
+      if (!st.platens.empty()) applyPlatens(s, clock, grid, st.platens, &st.totals, true);
     });
     bool inGrid = false;  // G2P, strain, closed-form stresses, the next step's P2G
     timed(StepPhase::Fused, [&] { inGrid = gatherStressScatter(s, clock, grid, p, st.order, fused_); });
@@ -79,8 +80,18 @@ void Solver::phases() {
     timed(StepPhase::P2G, [&] { particleToGrid(s, clock.step, p, grid, st.order, what); });
     if (what & kForces) timed(StepPhase::Grid, [&] { addLoads(s, clock.time, p, grid, st.loads); });
   };
-  const auto gridUpdate = [&] { timed(StepPhase::Grid, [&] { updateGrid(s, clock, grid, st.conditions, st.totals); }); };
-  const auto velocities = [&] { timed(StepPhase::Grid, [&] { gridVelocities(s, clock, grid, st.conditions); }); };
+  const auto gridUpdate = [&] {
+    timed(StepPhase::Grid, [&] {
+      updateGrid(s, clock, grid, st.conditions, st.totals);
+      if (!st.platens.empty()) applyPlatens(s, clock, grid, st.platens, &st.totals, true);
+    });
+  };
+  const auto velocities = [&] {
+    timed(StepPhase::Grid, [&] {
+      gridVelocities(s, clock, grid, st.conditions);
+      if (!st.platens.empty()) applyPlatens(s, clock, grid, st.platens, nullptr, false);
+    });
+  };
   const auto g2p = [&](bool strain) { timed(StepPhase::G2P, [&] { gridToParticle(s, clock, grid, p, strain); }); };
   const auto stress = [&] { timed(StepPhase::Stress, [&] { updateStresses(s, clock.step, p, st.totals); }); };
   const auto strainStress = [&] {  // strain and closed-form stresses in one pass, then the others

@@ -4,7 +4,9 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -85,6 +87,13 @@ struct ImplicitSolver::Attempt {
   Eigen::VectorXd externalStart;         // the same at the step's start
   Eigen::VectorXd startForce;            // the internal forces at the step's start (du = 0), on its geometry
   Eigen::VectorXd direction;             // indirect control: the driven components' reference (mm per unit load factor)
+  // The platens (mpm/implicit/platen_reduction.hpp): per platen, which degrees of freedom are
+  // prescribed in the step, their increments and (indirect control) their reference; the change
+  // of unknowns (none without platens) and the reduced tangent last factorised.
+  std::vector<std::array<bool, 3>> platenPrescribed;
+  std::vector<Eigen::Vector3d> platenIncrement, platenDirection;
+  std::optional<PlatenReduction> reduction;
+  Eigen::SparseMatrix<double> reducedTangent;
   double dLambda = 0.0;                  // indirect control: the load factor's increment
   double dTau = 0.0;                     // indirect control: the opening's increment
   Trial trial;                           // at du
@@ -115,6 +124,18 @@ struct ImplicitSolver::Attempt {
   }
 };
 
+namespace {
+
+// The tangent to factorise: K, or T^T K T with platens (kept in the attempt).
+const Eigen::SparseMatrix<double>& tangentOfTrial(const Trial& t, std::optional<PlatenReduction>& reduction,
+                                                  Eigen::SparseMatrix<double>& reduced) {
+  if (!reduction) return t.tangent;
+  reduced = reduceTangent(*reduction, t.tangent);
+  return reduced;
+}
+
+}  // namespace
+
 ImplicitSolver::ImplicitSolver(Scene scene, int threads)
     : settings_(scene.solver.implicit.value_or(ImplicitSettings{})), lu_(settings_.linearSolver) {
   Particles seeded = seedParticles(scene);
@@ -122,6 +143,7 @@ ImplicitSolver::ImplicitSolver(Scene scene, int threads)
   particles_ = std::move(seeded);
   conditions_ = conditionStates(setup_.scene);
   loads_ = loadStates(setup_.scene, particles_);
+  platens_ = platenStates(setup_.scene);
   for (Vec2& v : particles_.velocity) v.setZero();  // quasi-static: no initial velocities
 }
 
@@ -159,6 +181,30 @@ bool ImplicitSolver::prepare(double dt, const IndirectControl* control, Attempt&
       }
     }
   }
+  // The platens: their nodes' components stay unknowns; the increments of their prescribed
+  // degrees of freedom (or, driven by the load factor, their reference) move them rigidly.
+  a.platenPrescribed.assign(platens_.size(), {true, true, true});
+  a.platenIncrement.assign(platens_.size(), Eigen::Vector3d::Zero());
+  a.platenDirection.assign(platens_.size(), Eigen::Vector3d::Zero());
+  for (std::size_t p = 0; p < platens_.size(); ++p) {
+    const Platen& platen = scene.platens[p];
+    const bool driven = control && std::find(control->drivenPlatens.begin(), control->drivenPlatens.end(), p) != control->drivenPlatens.end();
+    for (int d = 0; d < 3; ++d) {
+      const PlatenDof& dof = platen.dof[static_cast<std::size_t>(d)];
+      // (Under indirect control a driven platen's displacements follow the load factor, free_until aside.)
+      const bool followsControl = driven && d < 2 && dof.drive == PlatenDrive::Displacement;
+      a.platenPrescribed[p][static_cast<std::size_t>(d)] = dof.drive == PlatenDrive::Held || dof.drivenAt(t0) || followsControl;
+      if (followsControl)
+        a.platenDirection[p][d] = control->reference[d];
+      else if (dof.drivenAt(t0))
+        a.platenIncrement[p][d] = dof.history(t1) - dof.history(t0);
+    }
+    for (const std::int32_t node : platens_[p].nodes) {
+      const Eigen::Matrix<double, 2, 3> b = rigidMap(grid.nodePosition(node), platens_[p].reference);
+      a.du.segment<2>(2 * static_cast<Eigen::Index>(node)) = b * a.platenIncrement[p];
+      a.direction.segment<2>(2 * static_cast<Eigen::Index>(node)) = b * a.platenDirection[p];
+    }
+  }
   // The geometry of the committed state (the pieces of a halved step share it).
   if (geometryStep_ != steps_ || geometry_.prescribed != a.prescribed) {
     std::size_t outside = 0;
@@ -168,6 +214,11 @@ bool ImplicitSolver::prepare(double dt, const IndirectControl* control, Attempt&
       return a.fail(0, 0.0, NewtonFailure::LeftGrid, "its shape-function support left the grid");
     }
     geometryStep_ = steps_;
+  }
+  a.reduction.reset();
+  if (!platens_.empty()) {
+    a.reduction = platenReduction(scene, platens_, geometry_.dofs, a.platenPrescribed);
+    if (a.platenPrescribed != platenLayout_) platenLayout_ = a.platenPrescribed, ++platenLayouts_;  // a factorisation of other unknowns
   }
   // Loads and gravity at the step's start and end.
   const int nx = grid.nodesX(), support = supportSize(scene.solver.shapeFunction);
@@ -192,6 +243,25 @@ bool ImplicitSolver::prepare(double dt, const IndirectControl* control, Attempt&
           spread(*into, geometry_.stencils[static_cast<std::size_t>(m)], each);
       }
     }
+    // A platen's force histories, spread over its nodes that carry the body so that their
+    // generalized force is the history's: f_k = B_k A^-1 F with A = sum_k B_k^T B_k.
+    for (std::size_t p = 0; p < platens_.size(); ++p) {
+      Eigen::Vector3d force = Eigen::Vector3d::Zero();
+      for (int d = 0; d < 3; ++d)
+        if (scene.platens[p].dof[static_cast<std::size_t>(d)].drive == PlatenDrive::Force)
+          force[d] = scene.platens[p].dof[static_cast<std::size_t>(d)].history(t);
+      if (force.isZero()) continue;
+      Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+      for (const std::int32_t node : platens_[p].nodes)
+        if (geometry_.reached[2 * static_cast<std::size_t>(node)]) {
+          const Eigen::Matrix<double, 2, 3> b = rigidMap(grid.nodePosition(node), platens_[p].reference);
+          sum += b.transpose() * b;
+        }
+      const Eigen::Vector3d each = solveRigid(sum, force);
+      for (const std::int32_t node : platens_[p].nodes)
+        if (geometry_.reached[2 * static_cast<std::size_t>(node)])
+          into->segment<2>(2 * static_cast<Eigen::Index>(node)) += rigidMap(grid.nodePosition(node), platens_[p].reference) * each;
+    }
   }
   return true;
 }
@@ -207,7 +277,7 @@ ImplicitSolver::SavedState ImplicitSolver::saved() const {
   }
   for (const Stencil& st : geometry_.stencils) s.stencilBases.push_back(st.base);
   s.prescribed = geometry_.prescribed;
-  if (luPattern_ >= 0 && luPattern_ == geometry_.patternBuilds) s.factored = factored_;
+  if (luPattern_ >= 0 && luPattern_ == factorKey()) s.factored = factored_;
   s.lastIncrement = lastIncrement_, s.lastLoadFactorIncrement = lastLoadFactorIncrement_, s.lastOpening = lastOpening_;
   return s;
 }
@@ -247,7 +317,7 @@ void ImplicitSolver::restore(const SavedState& s) {
   if (!samePattern) throw std::invalid_argument("its factorised tangent does not fit its step geometry");
   if (!lu_.factorize(k)) throw std::invalid_argument("its factorised tangent is singular");
   factored_ = k;
-  luPattern_ = geometry_.patternBuilds;
+  luPattern_ = factorKey();
 }
 
 Eigen::SparseMatrix<double> ImplicitSolver::tangentAtStart(double dt) {
@@ -259,9 +329,9 @@ Eigen::SparseMatrix<double> ImplicitSolver::tangentAtStart(double dt) {
 
 bool ImplicitSolver::factorize(const Eigen::SparseMatrix<double>& k, Attempt& a) {
   const double start = omp_get_wtime();
-  if (luPattern_ != geometry_.patternBuilds) lu_.forgetPattern();
+  if (luPattern_ != factorKey()) lu_.forgetPattern();
   const bool ok = lu_.factorize(k);
-  luPattern_ = ok ? geometry_.patternBuilds : -1;
+  luPattern_ = ok ? factorKey() : -1;
   if (ok) factored_ = k;
   a.report.linearSolveSeconds += omp_get_wtime() - start;
   a.report.factorizations++;
@@ -280,10 +350,10 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
   const auto components = a.du.size();
   // Newton on the unknowns.
   const DofMap& dofs = geometry_.dofs;
-  const int n = dofs.unknowns();
+  const PlatenReduction* reduction = a.reduction ? &*a.reduction : nullptr;  // the platens' change of unknowns
+  const int n = reduction ? reduction->reduced() : dofs.unknowns();
   const auto residualOf = [&](const Trial& t, double& relative) {
-    Eigen::VectorXd r(n);
-    for (int u = 0; u < n; ++u) r[u] = a.external[dofs.component[static_cast<std::size_t>(u)]] - t.internalForce[dofs.component[static_cast<std::size_t>(u)]];
+    const Eigen::VectorXd r = onUnknowns(dofs, reduction, [&](std::int32_t c) { return a.external[c] - t.internalForce[c]; });
     relative = r.norm() / std::max({a.external.norm(), t.internalForce.norm(), 1e-300});
     return r;
   };
@@ -297,18 +367,21 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
     evaluateTrial(setup_, particles_, geometry_, Eigen::VectorXd::Zero(components), false, a.snapBack, start, &prescribedIncrements);
     if (start.failed != SIZE_MAX) return a.failInMaterial(0, start, setup_, particles_);
     a.startForce = start.internalForce;
-    Eigen::VectorXd rhs(n);
-    for (int u = 0; u < n; ++u) {
-      const auto c = dofs.component[static_cast<std::size_t>(u)];
-      rhs[u] = a.external[c] - start.internalForce[c] - start.tangentTimesDirection[c];
-    }
-    if (luPattern_ != geometry_.patternBuilds || a.reuseRatio <= 0.0) {
+    const Eigen::VectorXd rhs = onUnknowns(dofs, reduction, [&](std::int32_t c) {
+      return a.external[c] - start.internalForce[c] - start.tangentTimesDirection[c];
+    });
+    if (luPattern_ != factorKey() || a.reuseRatio <= 0.0) {
       assembleTangent(setup_, particles_, geometry_, start);
-      if (!factorize(start.tangent, a)) return a.fail(0, 0.0, NewtonFailure::Singular, "the tangent at the step's start is singular");
+      if (!factorize(tangentOfTrial(start, a.reduction, a.reducedTangent), a)) return a.fail(0, 0.0, NewtonFailure::Singular, "the tangent at the step's start is singular");
     }
     const Eigen::VectorXd delta = solve(rhs, a);
     if (!delta.allFinite()) return a.fail(0, 0.0, NewtonFailure::Singular, "the tangent at the step's start is singular");
-    for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] = delta[u];
+    if (!reduction) {
+      for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] = delta[u];
+    } else {  // a platen's node components carry their prescribed increments already
+      const Eigen::VectorXd onNodes = toUnknowns(reduction, delta);
+      for (int u = 0; u < dofs.unknowns(); ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] += onNodes[u];
+    }
   }
   evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, a.trial);
   // A predictor far past the onset limit is not worth converging: the piece is cut at once.
@@ -340,17 +413,17 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       }
       return a.fail(it, relative, NewtonFailure::NotConverged, "Newton did not converge");
     }
-    const bool fresh = refactor || luPattern_ != geometry_.patternBuilds;
+    const bool fresh = refactor || luPattern_ != factorKey();
     cycle.solvedWithFreshTangent(fresh);
     if (fresh) {
       assembleTangent(setup_, particles_, geometry_, a.trial);
-      if (!factorize(a.trial.tangent, a)) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
+      if (!factorize(tangentOfTrial(a.trial, a.reduction, a.reducedTangent), a)) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
     }
-    const Eigen::VectorXd delta = solve(r, a);
+    const Eigen::VectorXd delta = toUnknowns(reduction, solve(r, a));
     if (!delta.allFinite()) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
     // Backtracking line search on |r|: the full step, then halves, the best kept.
     Eigen::VectorXd full = Eigen::VectorXd::Zero(a.du.size());
-    for (int u = 0; u < n; ++u) full[dofs.component[static_cast<std::size_t>(u)]] = delta[u];
+    for (int u = 0; u < dofs.unknowns(); ++u) full[dofs.component[static_cast<std::size_t>(u)]] = delta[u];
     Trial best;
     double bestNorm = INFINITY, alpha = 1.0;
     Eigen::VectorXd bestDu;
@@ -379,10 +452,12 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
   if (!prepare(0.0, &control, a)) return false;
   const auto components = a.du.size();
   const DofMap& dofs = geometry_.dofs;
-  const int n = dofs.unknowns();
-  // The control's coefficients per node component.
+  const PlatenReduction* reduction = a.reduction ? &*a.reduction : nullptr;  // the platens' change of unknowns
+  const int n = reduction ? reduction->reduced() : dofs.unknowns();
+  // The control's coefficients per node component, and over the (reduced) unknowns.
   Eigen::VectorXd c = Eigen::VectorXd::Zero(components);
   for (const auto& [k, coefficient] : control.terms) c[k] += coefficient;
+  const Eigen::VectorXd cUnknowns = onUnknowns(dofs, reduction, [&](std::int32_t k) { return c[k]; });
   const double cPrescribed = c.dot(a.direction);  // d tau per unit load factor through the driven components
   double dLambda = 0.0, previous = INFINITY;
   bool refactor = a.reuseRatio <= 0.0;
@@ -402,9 +477,10 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
     if (zero.failed != SIZE_MAX) return a.failInMaterial(0, zero, setup_, particles_);
     a.startForce = zero.internalForce;
     const double scale = dTau / lastOpening_;
-    for (int u = 0; u < n; ++u) {
+    for (int u = 0; u < dofs.unknowns(); ++u) {  // (a platen's node components: without the load factor's share)
       const auto k = dofs.component[static_cast<std::size_t>(u)];
-      a.du[k] = scale * lastIncrement_[k];
+      const double d = a.direction[k];
+      a.du[k] = scale * (d == 0.0 ? lastIncrement_[k] : lastIncrement_[k] - lastLoadFactorIncrement_ * d);
     }
     dLambda = scale * lastLoadFactorIncrement_;
     extrapolated = true;
@@ -420,12 +496,8 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
     a.report.totalIterations++;
     if (t.failed != SIZE_MAX) return a.failInMaterial(it, t, setup_, particles_);
     if (it == 0 && !extrapolated) a.startForce = t.internalForce;  // du = 0
-    Eigen::VectorXd r(n), ku(n);
-    for (int u = 0; u < n; ++u) {
-      const auto k = dofs.component[static_cast<std::size_t>(u)];
-      r[u] = a.external[k] - t.internalForce[k];
-      ku[u] = t.tangentTimesDirection[k];
-    }
+    const Eigen::VectorXd r = onUnknowns(dofs, reduction, [&](std::int32_t k) { return a.external[k] - t.internalForce[k]; });
+    const Eigen::VectorXd ku = onUnknowns(dofs, reduction, [&](std::int32_t k) { return t.tangentTimesDirection[k]; });
     const double reference = std::max({a.external.norm(), t.internalForce.norm(), 1e-300});
     double relative = r.norm() / reference;
     const double g = dTau - c.dot(du);
@@ -457,11 +529,11 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
     }
     if (it > 0 && r.norm() > a.reuseRatio * previous) refactor = true;
     previous = r.norm();
-    const bool fresh = refactor || luPattern_ != geometry_.patternBuilds;
+    const bool fresh = refactor || luPattern_ != factorKey();
     cycle.solvedWithFreshTangent(fresh);
     if (fresh) {
       assembleTangent(setup_, particles_, geometry_, t);
-      if (!factorize(t.tangent, a)) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
+      if (!factorize(tangentOfTrial(t, a.reduction, a.reducedTangent), a)) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
       refactor = a.reuseRatio <= 0.0;
     }
     // y depends on the factorisation and on K u^ only: solved again when either changed (K u^
@@ -472,14 +544,19 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
     if (!x.allFinite() || !y.allFinite()) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
     double cx = 0.0, cy = 0.0;
     for (int u = 0; u < n; ++u) {
-      const double ck = c[dofs.component[static_cast<std::size_t>(u)]];
+      const double ck = cUnknowns[u];
       cx += ck * x[u], cy += ck * y[u];
     }
     const double denominator = cy + cPrescribed;
     if (!(std::abs(denominator) > 0.0))
       return a.fail(it, relative, NewtonFailure::ControlBlind, "the control does not see the driven conditions (c . du does not change with the load factor)");
     const double deltaLambda = (g - cx) / denominator;
-    for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] += x[u] + deltaLambda * y[u];
+    if (!reduction) {
+      for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] += x[u] + deltaLambda * y[u];
+    } else {
+      const Eigen::VectorXd onNodes = toUnknowns(reduction, x + deltaLambda * y);
+      for (int u = 0; u < dofs.unknowns(); ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] += onNodes[u];
+    }
     dLambda += deltaLambda;
   }
 }
@@ -547,6 +624,38 @@ void ImplicitSolver::commit(const Attempt& a, double dt) {
     if (a.du[k] == 0.0) continue;
     const bool held = geometry_.dofs.unknownOf[static_cast<std::size_t>(k)] == DofMap::kPrescribed;
     external += 0.5 * (held ? a.startForce[k] + t.internalForce[k] : a.externalStart[k] + a.external[k]) * a.du[k];
+  }
+  // The platens: where they went (the prescribed increments, and the rest fitted to their nodes'
+  // increments, which move rigidly), what they put on the specimen (sum_k B_k^T (f_int - f_ext)
+  // over their nodes, plus their force histories, which f_ext holds spread over the nodes) and the
+  // work of their prescribed degrees of freedom (the rest is in the nodes' loads above).
+  for (std::size_t p = 0; p < platens_.size(); ++p) {
+    PlatenState& state = platens_[p];
+    const Platen& platen = scene.platens[p];
+    Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d fit = Eigen::Vector3d::Zero(), onSpecimen = Eigen::Vector3d::Zero(), atStart = Eigen::Vector3d::Zero();
+    for (const std::int32_t node : state.nodes) {
+      const Eigen::Matrix<double, 2, 3> b = rigidMap(scene.grid.nodePosition(node), state.reference);
+      const Eigen::Index k = 2 * static_cast<Eigen::Index>(node);
+      onSpecimen += b.transpose() * (t.internalForce.segment<2>(k) - a.external.segment<2>(k));
+      if (a.startForce.size() > 0) atStart += b.transpose() * (a.startForce.segment<2>(k) - a.externalStart.segment<2>(k));
+      if (!geometry_.reached[static_cast<std::size_t>(k)]) continue;
+      sum += b.transpose() * b;
+      fit += b.transpose() * a.du.segment<2>(k);
+    }
+    const Eigen::Vector3d rigid = solveRigid(sum, fit);
+    for (int d = 0; d < 3; ++d) {
+      const PlatenDof& dof = platen.dof[static_cast<std::size_t>(d)];
+      const bool prescribed = a.platenPrescribed[p][static_cast<std::size_t>(d)];
+      const double increment = prescribed ? a.platenIncrement[p][d] + a.dLambda * a.platenDirection[p][d] : rigid[d];
+      if (dof.drive == PlatenDrive::Force) {
+        onSpecimen[d] += dof.history(time_ + dt);
+        atStart[d] += dof.history(time_);
+      }
+      if (prescribed) external += 0.5 * (atStart[d] + onSpecimen[d]) * increment;
+      state.displacement[d] += increment;
+    }
+    state.force = onSpecimen;
   }
   totals_.externalWork += external;
   internalWork_ += internal;

@@ -8,10 +8,12 @@
 // Prescribed components over a step [t, t + dt]: Fixed 0; Displacement u(t + dt) - u(t);
 // Velocity dt v(t + dt) (a rate in pseudo-time); an affine field dt scale(t + dt) G (x - o).
 
+#include <array>
 #include <vector>
 
 #include "mpm/implicit/implicit_system.hpp"
 #include "mpm/implicit/linear_solver.hpp"
+#include "mpm/implicit/platen_reduction.hpp"
 
 namespace ecm::mpm {
 
@@ -22,6 +24,7 @@ namespace ecm::mpm {
 // The grid is reset every step, so the control is on the step's increments: d tau = sum c_k du_k.
 struct IndirectControl {
   std::vector<std::size_t> driven;                     // indices of scene conditions
+  std::vector<std::size_t> drivenPlatens;              // indices of scene platens (their displacement-driven x, y)
   Vec2 reference = Vec2(0.0, 1.0);                     // mm per unit load factor, on their non-fixed components
   std::vector<std::pair<std::int32_t, double>> terms;  // (node component, coefficient)
 };
@@ -91,6 +94,7 @@ class ImplicitSolver {
   long steps() const { return steps_; }
   const Particles& particles() const { return particles_; }
   const std::vector<ConditionState>& conditions() const { return conditions_; }
+  const std::vector<PlatenState>& platens() const { return platens_; }
   const StepSetup& setup() const { return setup_; }
   Energies energies() const;
   // The internal work (N mm): sum_p V int sigma : d eps, trapezoidal per step. External work minus
@@ -119,13 +123,19 @@ class ImplicitSolver {
   Particles particles_;
   std::vector<ConditionState> conditions_;
   std::vector<LoadState> loads_;
+  std::vector<PlatenState> platens_;
   RunTotals totals_;
   // Factorises K over the current unknowns into lu_ (false: singular), timing it in `a`.
   bool factorize(const Eigen::SparseMatrix<double>& k, Attempt& a);
   Eigen::VectorXd solve(const Eigen::VectorXd& b, Attempt& a);
 
   LinearSolver lu_;
-  long luPattern_ = -1;    // geometry_.patternBuilds of the factorised tangent (-1: none)
+  long luPattern_ = -1;    // factorKey() of the factorised tangent (-1: none)
+  // The unknowns a factorisation is of: the geometry's pattern, and which platen degrees of
+  // freedom are prescribed (a platen free until some time changes them without a new pattern).
+  std::vector<std::array<bool, 3>> platenLayout_;
+  long platenLayouts_ = 0;
+  long factorKey() const { return geometry_.patternBuilds + (platenLayouts_ << 32); }
   Eigen::SparseMatrix<double> factored_;  // that tangent (a checkpoint stores it)
   StepGeometry geometry_;  // of the committed state after `geometryStep_` steps (-1: none)
   long geometryStep_ = -1;

@@ -93,7 +93,12 @@ void validateImplicit(const Scene& s) {
   const auto& c = *im.indirect;
   if (c.driven.empty()) throw ValueError("solver.control.indirect.driven", "names no condition");
   for (const std::string& name : c.driven)
-    if (!findCondition(s.conditions, name)) throw ValueError("solver.control.indirect.driven", "no condition named '" + name + "'");
+    if (!findCondition(s.conditions, name) &&
+        std::none_of(s.platens.begin(), s.platens.end(), [&](const Platen& p) { return p.name == name; }))
+      throw ValueError("solver.control.indirect.driven", "no condition or platen named '" + name + "'");
+  for (const Platen& p : s.platens)
+    if (std::find(c.driven.begin(), c.driven.end(), p.name) != c.driven.end() && !displacementDriven(p, kPlatenX) && !displacementDriven(p, kPlatenY))
+      throw ValueError("solver.control.indirect.driven", "platen '" + p.name + "' has no displacement-driven x or y for the load factor to move");
   if (!c.reference.allFinite() || c.reference.squaredNorm() == 0.0)
     throw ValueError("solver.control.indirect.reference", "must be finite and not zero (mm per unit load factor)");
   if (!c.gauge.empty() && std::none_of(s.gauges.begin(), s.gauges.end(), [&](const Gauge& g) { return g.name == c.gauge; }))
@@ -227,6 +232,58 @@ void validateConditions(const Scene& s) {
   }
 }
 
+// Platens (mpm/scene/platen.hpp): names unique among platens and conditions, boxes with grid
+// nodes, histories sound. What needs the nodes themselves (a rotation on one node, a node of
+// two platens or of a platen and a condition) is checked where they are found (platenStates).
+void validatePlatens(const Scene& s) {
+  const Grid& g = s.grid;
+  const double tol = 1e-9 * std::min(g.cellSize[0], g.cellSize[1]);
+  for (std::size_t i = 0; i < s.platens.size(); ++i) {
+    const Platen& p = s.platens[i];
+    const std::string key = item("platens", i);
+    if (p.name.empty()) throw ValueError(key + ".name", "must not be empty");
+    for (std::size_t j = 0; j < i; ++j)
+      if (s.platens[j].name == p.name) throw ValueError(key + ".name", "'" + p.name + "' is defined twice");
+    if (findCondition(s.conditions, p.name)) throw ValueError(key + ".name", "'" + p.name + "' is also a condition's name");
+    for (std::size_t b = 0; b < p.boxes.size(); ++b) {
+      const std::string boxKey = item((key + ".boxes").c_str(), b);
+      validateBox(boxKey, p.boxes[b]);
+      bool any = false;
+      for (int n = 0; n < g.nodeCount() && !any; ++n) any = p.boxes[b].contains(g.nodePosition(n), tol);
+      if (!any) throw ValueError(boxKey, "contains no grid node");
+    }
+    if (p.reference && !p.reference->allFinite()) throw ValueError(key + ".reference", "must be finite");
+    // Its nodes: none shared with a condition or an earlier platen; two or more to carry a rotation.
+    int nodes = 0;
+    for (int n = 0; n < g.nodeCount(); ++n) {
+      const Vec2 x = g.nodePosition(n);
+      const auto inside = [&](const Box& b) { return b.contains(x, tol); };
+      if (std::none_of(p.boxes.begin(), p.boxes.end(), inside)) continue;
+      ++nodes;
+      const auto clash = [&](const std::string& what) {
+        std::ostringstream msg;
+        msg << "its node at (" << x[0] << ", " << x[1] << ") mm also belongs to " << what << " (a node moves with one platen or condition)";
+        throw ValueError(key + ".boxes", msg.str());
+      };
+      for (const NodeCondition& c : s.conditions)
+        if (inside(c.box)) clash("condition '" + c.name + "'");
+      for (std::size_t j = 0; j < i; ++j)
+        if (std::any_of(s.platens[j].boxes.begin(), s.platens[j].boxes.end(), inside)) clash("platen '" + s.platens[j].name + "'");
+    }
+    if (nodes < 2 && p.dof[kPlatenRotation].drive != PlatenDrive::Held)
+      throw ValueError(key + ".rotation", "must be held on a platen of one node (a rotation needs two nodes or more)");
+    const char* names[3] = {"x", "y", "rotation"};
+    for (int d = 0; d < 3; ++d) {
+      const PlatenDof& dof = p.dof[static_cast<std::size_t>(d)];
+      if (dof.drive == PlatenDrive::Displacement || dof.drive == PlatenDrive::Force)
+        check(key + "." + names[d], [&] { dof.history.validate(); });
+      requireRange(key + "." + names[d] + ".free_until", dof.freeUntil, 0.0, INFINITY, true, false);
+    }
+  }
+  if (!s.platens.empty() && (s.checkpoint.everySteps > 0 || s.checkpoint.everyMinutes > 0.0))
+    throw ValueError("checkpoint", "checkpoints do not yet hold the platens' state: a scene with platens cannot write them");
+}
+
 }  // namespace
 
 // The one check of a scene's values (the YAML reader checks only the form of the file and
@@ -239,6 +296,7 @@ void Scene::validate() const {
   validateSolver(*this);
   validateOutput(*this);
   validateConditions(*this);
+  validatePlatens(*this);
 }
 
 }  // namespace ecm::mpm

@@ -9,6 +9,7 @@
 #include "material/material.hpp"
 #include "mpm/scene/boundary.hpp"
 #include "mpm/scene/gauge.hpp"
+#include "mpm/scene/platen.hpp"
 #include "mpm/scene/geometry.hpp"
 #include "mpm/core/grid.hpp"
 #include "mpm/core/shape_function.hpp"
@@ -34,6 +35,7 @@ struct Scene {
   int particlesPerCell = 2;  // k: k x k particles per cell
   std::vector<NodeCondition> conditions;
   std::vector<Load> loads;
+  std::vector<Platen> platens;  // rigid loading platens (mpm/scene/platen.hpp)
   std::vector<Gauge> gauges;  // history.csv columns <name>_mm (mpm/scene/gauge.hpp)
   SolverSettings solver;
   double endTime = 0.0;         // s: the latest end

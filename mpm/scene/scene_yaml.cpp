@@ -311,6 +311,41 @@ Gauge readGauge(const YamlMap& m) {
   return g;
 }
 
+// One degree of freedom of a platen: `held`, `free`, {displacement: HISTORY} or {force: HISTORY}.
+PlatenDof readPlatenDof(const YamlMap& m, const std::string& key) {
+  PlatenDof d;
+  if (!m.has(key)) m.fail(key, "missing: give held, free, {displacement: HISTORY} or {force: HISTORY}");
+  if (m.node()[key].IsScalar()) {
+    d.drive = m.getEnum(key, {"held", "free"}) == "held" ? PlatenDrive::Held : PlatenDrive::Free;
+    return d;
+  }
+  const YamlMap v = m.child(key);
+  if (v.has("displacement") == v.has("force")) {
+    v.finish();  // an unknown key says more than "nothing given"
+    m.fail(key, "expected held, free, {displacement: HISTORY} or {force: HISTORY}");
+  }
+  d.drive = v.has("displacement") ? PlatenDrive::Displacement : PlatenDrive::Force;
+  d.history = readTimeFunction(v.child(v.has("displacement") ? "displacement" : "force"));
+  if (d.drive == PlatenDrive::Force) v.reject("free_until", "applies to a displacement only");
+  d.freeUntil = v.getOr<double>("free_until", 0.0);
+  return d;
+}
+
+// platens: [{name: NAME, boxes: [{min, max}, ...], reference: [x, y], x: DOF, y: DOF, rotation: DOF}]
+// (mpm/scene/platen.hpp; reference optional).
+Platen readPlaten(const YamlMap& m) {
+  Platen p;
+  p.name = m.get<std::string>("name");
+  for (const YamlMap& b : m.sequence("boxes")) p.boxes.push_back(readBox(b));
+  if (p.boxes.empty()) m.fail("boxes", "needs at least one box {min: [x, y], max: [x, y]}");
+  if (m.has("reference")) p.reference = vec2(m, "reference");
+  p.dof[kPlatenX] = readPlatenDof(m, "x");
+  p.dof[kPlatenY] = readPlatenDof(m, "y");
+  p.dof[kPlatenRotation] = readPlatenDof(m, "rotation");
+  m.finish();
+  return p;
+}
+
 }  // namespace
 
 Scene readScene(const YamlMap& m) {
@@ -358,6 +393,8 @@ Scene readScene(const YamlMap& m) {
     for (const YamlMap& c : m.sequence("conditions")) s.conditions.push_back(readCondition(c));
   if (m.has("loads"))
     for (const YamlMap& l : m.sequence("loads")) s.loads.push_back(readLoad(l));
+  if (m.has("platens"))
+    for (const YamlMap& p : m.sequence("platens")) s.platens.push_back(readPlaten(p));
   if (m.has("gauges"))
     for (const YamlMap& g : m.sequence("gauges")) s.gauges.push_back(readGauge(g));
   if (m.has("stop_when")) s.stopWhen = readStopWhen(m.child("stop_when"));

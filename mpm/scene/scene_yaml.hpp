@@ -74,6 +74,13 @@
 //   loads:                      # total force spread equally over the set
 //     - {name: pull, box: {min: [0, 95], max: [100, 100]}, on: particles, force: [0, 1000],
 //        history: {type: linear_ramp, value: 1, time: 1e-4}}
+//   platens:                    # optional: rigid loading platens (mpm/scene/platen.hpp)
+//     - name: frame
+//       boxes: [{min: [0, 200], max: [200, 200]}, {min: [0, 100], max: [0, 195]}]  # its nodes
+//       reference: [0, 200]     # mm: its rotation's and moment's point (default: the nodes' mean)
+//       x: {force: {type: linear_ramp, value: 10000, time: 1e-3}}        # N on the specimen
+//       y: {displacement: {type: linear_ramp, value: 0.1, time: 1e-2}, free_until: 2e-3}   # mm
+//       rotation: held          # held | free | {displacement: H} (rad) | {force: H} (N mm)
 //   stop_when:                  # optional: end before end_time at the first output row (at or
 //     condition: top            #   after after_time) where this condition's reaction along its
 //     load_below: 0.1           #   driven component is below load_below (in (0, 1)) times its

@@ -37,6 +37,9 @@ StepSetup makeStepSetup(Scene scene, std::size_t particles, int threads, std::si
     const bool x = c.field || c.component[0].kind != Prescribed::Free, y = c.field || c.component[1].kind != Prescribed::Free;
     for (const auto n : nodesIn(g, c.box)) s.constrained[static_cast<std::size_t>(n)] |= static_cast<std::uint8_t>((x ? 1 : 0) | (y ? 2 : 0));
   }
+  for (const auto& platen : scene.platens)  // a platen's nodes move with it: no damping of their own
+    for (const auto& box : platen.boxes)
+      for (const auto n : nodesIn(g, box)) s.constrained[static_cast<std::size_t>(n)] = 3;
   s.scene = std::move(scene);
   return s;
 }
@@ -71,6 +74,46 @@ std::vector<LoadState> loadStates(const Scene& scene, const Particles& particles
     loads.push_back(std::move(s));
   }
   return loads;
+}
+
+std::vector<PlatenState> platenStates(const Scene& scene) {
+  const Grid& g = scene.grid;
+  std::vector<std::uint8_t> taken(static_cast<std::size_t>(g.nodeCount()), 0);  // 1: a condition's, 2 + i: platen i's
+  for (const auto& c : scene.conditions)
+    for (const auto n : nodesIn(g, c.box)) taken[static_cast<std::size_t>(n)] = 1;
+  std::vector<PlatenState> platens;
+  for (std::size_t i = 0; i < scene.platens.size(); ++i) {
+    const Platen& p = scene.platens[i];
+    PlatenState s;
+    for (const Box& box : p.boxes) {
+      const std::vector<std::int32_t> in = nodesIn(g, box);
+      s.nodes.insert(s.nodes.end(), in.begin(), in.end());
+    }
+    std::sort(s.nodes.begin(), s.nodes.end());
+    s.nodes.erase(std::unique(s.nodes.begin(), s.nodes.end()), s.nodes.end());
+    if (s.nodes.empty()) throw std::invalid_argument("platen '" + p.name + "': its boxes contain no grid node");
+    for (const auto n : s.nodes) {
+      std::uint8_t& t = taken[static_cast<std::size_t>(n)];
+      if (t != 0) {
+        const Vec2 x = g.nodePosition(n);
+        throw std::invalid_argument("platen '" + p.name + "': its node at (" + std::to_string(x[0]) + ", " + std::to_string(x[1]) +
+                                    ") mm also belongs to " +
+                                    (t == 1 ? std::string("a condition") : "platen '" + scene.platens[t - 2].name + "'") +
+                                    " (a node moves with one platen or condition)");
+      }
+      t = static_cast<std::uint8_t>(std::min<std::size_t>(2 + i, 255));
+    }
+    if (s.nodes.size() < 2 && p.dof[kPlatenRotation].drive != PlatenDrive::Held)
+      throw std::invalid_argument("platen '" + p.name + "': its rotation is not held, but it has one node (a rotation needs two or more)");
+    if (p.reference) {
+      s.reference = *p.reference;
+    } else {
+      for (const auto n : s.nodes) s.reference += g.nodePosition(n);
+      s.reference /= static_cast<double>(s.nodes.size());
+    }
+    platens.push_back(std::move(s));
+  }
+  return platens;
 }
 
 }  // namespace ecm::mpm

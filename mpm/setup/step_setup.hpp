@@ -51,6 +51,16 @@ struct ConditionState {
   Vec2 displacement = Vec2::Zero();  // mm: integral of the prescribed velocity (of the field at its origin)
 };
 
+// The runtime state of a rigid platen (mpm/scene/platen.hpp): its nodes, its reference point, where
+// it is and what it puts on the specimen. Degrees of freedom in the order x, y, rotation.
+struct PlatenState {
+  std::vector<std::int32_t> nodes;              // sorted, each once
+  Vec2 reference = Vec2::Zero();                // mm
+  Eigen::Vector3d displacement = Eigen::Vector3d::Zero();  // mm, mm, rad
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();         // N, N, N mm (moment about the reference): on the specimen, last step
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();      // mm/s, mm/s, rad/s (explicit: of the last step)
+};
+
 struct LoadState {
   std::vector<std::int32_t> members;  // nodes or particles
   Vec2 applied = Vec2::Zero();        // N: the total force applied in the last step
@@ -63,5 +73,9 @@ StepSetup makeStepSetup(Scene scene, std::size_t particles, int threads, std::si
 // grid node) and the loads' members, nodes or particles (naming a load whose box holds none).
 std::vector<ConditionState> conditionStates(const Scene& scene);
 std::vector<LoadState> loadStates(const Scene& scene, const Particles& particles);
+// The platens' nodes and reference points. Throws std::invalid_argument naming a platen that
+// shares a node with another platen or with a condition, or whose rotation is not held on fewer
+// than two nodes (one node cannot carry a rotation).
+std::vector<PlatenState> platenStates(const Scene& scene);
 
 }  // namespace ecm::mpm

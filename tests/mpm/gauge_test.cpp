@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "../io/temp_dir.hpp"
+#include "run_helpers.hpp"
 #include "mpm/run.hpp"
 #include "mpm/scene/scene_yaml.hpp"
 
@@ -16,28 +17,6 @@ namespace {
 
 using ecm::test::expectContains;
 using ecm::test::inputError;
-
-RunOptions quiet(const std::filesystem::path& dir) {
-  RunOptions o;
-  o.outputDir = dir;
-  o.threads = 1;
-  o.progress = false;
-  o.plot = false;
-  o.snapshots = false;
-  return o;
-}
-
-// The last row of history.csv as name -> value.
-std::map<std::string, double> lastRow(const std::filesystem::path& csv) {
-  std::ifstream in(csv);
-  std::string header, line, last;
-  std::getline(in, header);
-  while (std::getline(in, line)) last = line;
-  std::map<std::string, double> row;
-  std::stringstream h(header), v(last);
-  for (std::string name, value; std::getline(h, name, ',') && std::getline(v, value, ',');) row[name] = std::stod(value);
-  return row;
-}
 
 // A 10 x 10 mm elastic block (nu 0, 2 x 2 particles per 10 mm cell: particles at 2.5 and 7.5 mm)
 // whose top is pulled 0.01 mm: a uniform strain of 1e-3.
@@ -64,7 +43,7 @@ gauges:
 TEST(Gauge, AnExtensometerAcrossAUniformlyStrainedBlockReadsEpsTimesItsLengthImplicit) {
   const Scene scene = readScene(io::parseYaml(std::string(kBlock) + "solver: {scheme: implicit_static, load_step: 1}\n", "b.yaml"));
   ecm::test::TempDir dir;
-  const RunResult r = runScene(scene, quiet(dir.path() / "out"));
+  const RunResult r = runScene(scene, quietRun(dir.path() / "out"));
   ASSERT_TRUE(r.completed) << r.error;
   const auto row = lastRow(dir.path() / "out" / "history.csv");
   EXPECT_NEAR(row.at("extensometer_mm"), 5e-3, 1e-12);
@@ -99,7 +78,7 @@ TEST(Gauge, AnExtensometerInAnAffineFieldReadsEpsTimesItsLengthExplicit) {
   s.endTime = 1e-3;
   s.validate();
   ecm::test::TempDir dir;
-  const RunResult r = runScene(s, quiet(dir.path() / "out"));
+  const RunResult r = runScene(s, quietRun(dir.path() / "out"));
   ASSERT_TRUE(r.completed) << r.error;
   const auto row = lastRow(dir.path() / "out" / "history.csv");
   // The particles move with the field: y(t) = y0 exp(rate t) to the time step's order; the strain
@@ -116,7 +95,7 @@ TEST(Gauge, StopWhenEndsTheRunWhereTheGaugeReachesItsValue) {
   const Scene scene = readScene(io::parseYaml(std::string(kBlock) + "solver: {scheme: implicit_static, load_step: 0.1}\n"
                                               "stop_when: {gauge: extensometer, reaches: 2e-3}\n", "b.yaml"));
   ecm::test::TempDir dir;
-  const RunResult r = runScene(scene, quiet(dir.path() / "out"));
+  const RunResult r = runScene(scene, quietRun(dir.path() / "out"));
   ASSERT_TRUE(r.completed) << r.error;
   EXPECT_TRUE(r.endedByStopWhen);
   const auto row = lastRow(dir.path() / "out" / "history.csv");
@@ -135,7 +114,7 @@ TEST(Gauge, IndirectControlOnAGaugeDrivesItsReading) {
   const Scene scene = readScene(io::parseYaml(text + "solver: {scheme: implicit_static, control: {indirect: {driven: [top], "
                                                      "gauge: extensometer, step: 1e-3, until: 4e-3}}}\n", "b.yaml"));
   ecm::test::TempDir dir;
-  const RunResult r = runScene(scene, quiet(dir.path() / "out"));
+  const RunResult r = runScene(scene, quietRun(dir.path() / "out"));
   ASSERT_TRUE(r.completed) << r.error;
   const auto row = lastRow(dir.path() / "out" / "history.csv");
   EXPECT_NEAR(row.at("extensometer_mm"), 4e-3, 1e-9);
@@ -156,7 +135,7 @@ TEST(Gauge, BadGaugesAreRefused) {
   const Scene scene = readScene(io::parseYaml(outside + "solver: {scheme: implicit_static, load_step: 1}\n", "b.yaml"));
   ecm::test::TempDir dir;
   try {
-    runScene(scene, quiet(dir.path() / "out"));
+    runScene(scene, quietRun(dir.path() / "out"));
     ADD_FAILURE() << "a gauge outside the body was accepted";
   } catch (const std::invalid_argument& e) {
     expectContains(e.what(), "gauges[1].at: (17.5, 7.5) mm is outside the body (no particle within one particle spacing");

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../io/temp_dir.hpp"
+#include "run_helpers.hpp"
 #include "mpm/explicit/checkpoint.hpp"
 #include "mpm/run.hpp"
 #include "mpm/scene/scene_yaml.hpp"
@@ -79,7 +80,7 @@ TEST(ImplicitScene, BadInputIsRefusedWithTheLineAndTheReason) {
   }
   {  // a driven condition that does not exist
     const auto e = err(replaced(bar, "driven: [top]", "driven: [roof]"));
-    expectContains(e.what(), "no condition named 'roof'");
+    expectContains(e.what(), "no condition or platen named 'roof'");
     EXPECT_EQ(e.line, 28);
   }
   {  // a control that names no node
@@ -179,17 +180,6 @@ TEST(ImplicitScene, AStoppedDisplacementControlledRunRestartsBitwiseOnAnotherThr
 // above that floor every step is kept and counted as relaxed (each looks hard, so the steps
 // shrink to the smallest); at the tolerance itself the run stops loudly, naming the step and
 // the residual. (Two iterations and two halvings keep it short.)
-// Run options without progress, plots or snapshots, on one thread, into `dir`.
-RunOptions quietOptions(const std::filesystem::path& dir) {
-  RunOptions options;
-  options.progress = false;
-  options.plot = false;
-  options.snapshots = false;
-  options.threads = 1;
-  options.outputDir = dir;
-  return options;
-}
-
 TEST(ImplicitScene, AStalledNewtonIsKeptBelowTheAcceptToleranceAndStopsTheRunAboveIt) {
   const std::string bar = replaced(replaced(shippedBar(), "until: 0.04 ", "until: 0.0002"),  // 20 elastic steps or more
                                    "  control:", "  max_iterations: 2\n  max_halvings: 2\n  control:");
@@ -226,7 +216,7 @@ TEST(ImplicitScene, AStalledNewtonIsKeptBelowTheAcceptToleranceAndStopsTheRunAbo
 TEST(ImplicitScene, AStalledNewtonProperIsGivenUpEarly) {
   const std::string bar = replaced(replaced(shippedBar(), "until: 0.04 ", "until: 0.0002"), "  control:", "  max_iterations: 60\n  control:");
   ecm::test::TempDir dir;
-  RunOptions options = quietOptions(dir.path() / "kept");
+  RunOptions options = quietRun(dir.path() / "kept");
   const Scene scene = readScene(io::parseYaml(replaced(bar, "tolerance: 1e-6 ", "tolerance: 1e-16\n  accept_tolerance: 1e-9"), "bar.yaml"));
   const RunResult r = runScene(scene, options);
   ASSERT_TRUE(r.completed) << r.error;
@@ -267,7 +257,7 @@ TEST(ImplicitScene, SnapBackReleaseGoesOnAndStopEndsTheRunAtThePoint) {
   {
     const Scene scene = readScene(io::parseYaml(weak, "bar.yaml"));
     ASSERT_EQ(scene.solver.snapBack, SnapBackPolicy::Release);
-    const RunResult r = runScene(scene, quietOptions(dir.path() / "release"));
+    const RunResult r = runScene(scene, quietRun(dir.path() / "release"));
     ASSERT_TRUE(r.completed) << r.error;
     const auto j = nlohmann::json::parse(fileText(dir.path() / "release" / "summary.json"));
     EXPECT_GT(j["snap_back_releases"].get<long>(), 0);
@@ -275,7 +265,7 @@ TEST(ImplicitScene, SnapBackReleaseGoesOnAndStopEndsTheRunAtThePoint) {
   {
     const Scene scene = readScene(io::parseYaml(replaced(weak, "  control:", "  snap_back: stop\n  control:"), "bar.yaml"));
     ASSERT_EQ(scene.solver.snapBack, SnapBackPolicy::Stop);
-    const RunResult r = runScene(scene, quietOptions(dir.path() / "stop"));
+    const RunResult r = runScene(scene, quietRun(dir.path() / "stop"));
     EXPECT_FALSE(r.completed);
     expectContains(r.error, "a material snap-back persists after a halving");
     expectContains(r.error, "snap-back");
@@ -315,7 +305,7 @@ TEST(ImplicitScene, AnOpeningOffTheBodyOrOffTheNodesIsRefused) {
   const Scene margin = readScene(io::parseYaml(replaced(bar, "{node: [0, 500], component: y", "{node: [-10, 500], component: y"), "bar.yaml"));
   ecm::test::TempDir dir;
   try {
-    runScene(margin, quietOptions(dir.path() / "margin"));
+    runScene(margin, quietRun(dir.path() / "margin"));
     ADD_FAILURE() << "an opening on a node no particle reaches was accepted";
   } catch (const std::invalid_argument& e) {
     expectContains(e.what(), "solver.control.indirect.opening[0]: the node (-10, 500) mm is reached by no particle");
@@ -343,7 +333,7 @@ TEST(ImplicitScene, DisplacementControlStopsAtTheStructuralSnapBackAndSaysSo) {
   const Scene scene = readScene(io::parseYaml(text, "bar.yaml"));
   ASSERT_FALSE(scene.solver.implicit->indirect);
   ecm::test::TempDir dir;
-  const RunResult r = runScene(scene, quietOptions(dir.path() / "out"));
+  const RunResult r = runScene(scene, quietRun(dir.path() / "out"));
   EXPECT_FALSE(r.completed);
   // It got to the peak (2.9 MPa x 20 mm^2 = 58 N) before it failed.
   EXPECT_NEAR(r.peakLoad, 58.0, 0.01 * 58.0);
@@ -374,7 +364,7 @@ conditions:
 )";
   const Scene scene = readScene(io::parseYaml(text, "min-ugimp.yaml"));
   ecm::test::TempDir dir;
-  const RunResult r = runScene(scene, quietOptions(dir.path() / "out"));
+  const RunResult r = runScene(scene, quietRun(dir.path() / "out"));
   ASSERT_TRUE(r.completed) << r.error;
   EXPECT_NEAR(r.peakLoad, 10.0, 1e-9 * 10.0);
 }
