@@ -206,6 +206,13 @@ done
   echo "set xlabel '{/Symbol d} (mm)'; set ylabel 'P (N)'"
   printf "plot "
   sep=""
+  # The test (Nooru-Mohamed, load path 4b; data/experiments/): its delta is the gauges' across the
+  # notches, stiffer than the top edge's (docs/validation.md compares like with like).
+  if [[ -f data/experiments/nooru-mohamed-4b.txt ]]; then
+    awk '!/^#/ && NF == 2 {print $1 "," $2}' data/experiments/nooru-mohamed-4b.txt >"$out/test-4b.csv"
+    printf "'test-4b.csv' using 1:2 with linespoints lw 2 lc rgb 'black' pt 7 title 'test 4b ({/Symbol d} of its gauges, not the top edge)'"
+    sep=", \\"$'\n'"     "
+  fi
   for r in "${rows[@]}"; do
     set -- $r
     [[ $1 == *-smeared || $1 == *-crackband || $1 == *-tail ]] && continue  # in contrast.png, tail.png

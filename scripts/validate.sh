@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# The validation of ecm against two physical tests (docs/validation.md): Nooru-Mohamed's
+# double-edge-notched panel (load path 4b) and Winkler's L-shaped panel, with each rig's own
+# boundary conditions and gauges, material parameters from the tests' material data and the band
+# law's shape from Hordijk's curve; nothing fitted to the structural curves.
+# Run after the build (cmake -S . -B build -G Ninja && ninja -C build).
+# Usage: scripts/validate.sh [OUT_DIR] [WHAT...]   (default: results/validation quick)
+#   WHAT: quick     the coarse meshes: DEN explicit and implicit, L-panel explicit and implicit,
+#                   and the DEN's gap accounting (today's scene, the rig with the paper's law, the
+#                   second band), about 5 minutes on 2 threads
+#         medium    the medium meshes (DEN and L-panel, explicit; L-panel implicit), ~15 minutes
+#         fine      the fine meshes (explicit), ~1 hour
+#         all       quick medium fine
+#         RUN       one run by name (see `runs` below)
+#         report    no run: the tables and plots of what is in OUT_DIR
+# Writes OUT_DIR/RUN/ (ecm-mpm's output folder, without VTU snapshots, plus compare.csv and
+# compare.json), OUT_DIR/den.png and OUT_DIR/lpanel.png (ecm against the tests), OUT_DIR/summary.json
+# and the tables on stdout. Units: mm, N, MPa, t, s.
+# Threads: $VALIDATE_THREADS (default 2); binary: $VALIDATE_BIN (default ./build/mpm/ecm-mpm).
+set -uo pipefail
+cd "$(dirname "$0")/.."
+out=${1:-results/validation}
+shift || true
+[[ $# -gt 0 ]] || set -- quick
+threads=${VALIDATE_THREADS:-2}
+bin=${VALIDATE_BIN:-./build/mpm/ecm-mpm}
+[[ -x $bin ]] || { echo "error: $bin not built (cmake -S . -B build -G Ninja && ninja -C build)" >&2; exit 2; }
+mkdir -p "$out/scenes"
+
+# run name -> scene file (variants are written to OUT_DIR/scenes/ from a shipped scene, one line changed)
+declare -A scene=(
+  [den-rig-coarse]=data/validation/den-4b-rig-coarse.yaml
+  [den-rig-coarse-implicit]=data/validation/den-4b-rig-coarse-implicit.yaml
+  [den-rig-medium]=data/validation/den-4b-rig-medium.yaml
+  [den-rig-medium-implicit]=data/validation/den-4b-rig-medium-implicit.yaml
+  [den-rig-fine]=data/validation/den-4b-rig-fine.yaml
+  [den-today-coarse]=data/den/den-4b-coarse.yaml
+  [den-rig-coarse-paper-law]=variant
+  [den-rig-coarse-second-band]=variant
+  [den-rig-coarse-second-band-implicit]=variant
+  [lpanel-coarse]=data/validation/lpanel-coarse.yaml
+  [lpanel-coarse-implicit]=data/validation/lpanel-coarse-implicit.yaml
+  [lpanel-coarse-paper-n]=variant
+  [lpanel-medium]=data/validation/lpanel-medium.yaml
+  [lpanel-medium-implicit]=data/validation/lpanel-medium-implicit.yaml
+  [lpanel-fine]=data/validation/lpanel-fine.yaml
+)
+runs=()
+for w in "$@"; do
+  case "$w" in
+    quick) runs+=(den-today-coarse den-rig-coarse-paper-law den-rig-coarse den-rig-coarse-implicit den-rig-coarse-second-band
+                  lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-implicit) ;;
+    medium) runs+=(den-rig-medium lpanel-medium lpanel-medium-implicit) ;;
+    fine) runs+=(den-rig-fine lpanel-fine) ;;
+    all) runs+=(den-today-coarse den-rig-coarse-paper-law den-rig-coarse den-rig-coarse-implicit den-rig-coarse-second-band
+                lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-implicit den-rig-medium lpanel-medium lpanel-medium-implicit
+                den-rig-fine lpanel-fine) ;;
+    report) ;;
+    *) [[ -n ${scene[$w]:-} ]] || { echo "usage: scripts/validate.sh [OUT_DIR] [quick|medium|fine|all|report|RUN]... (RUN: ${!scene[*]})" >&2; exit 2; }
+       runs+=("$w") ;;
+  esac
+done
+
+# A variant: a shipped scene with its material swapped (the file and the body's material name).
+variant() {
+  local name=$1 from material
+  case "$name" in
+    den-rig-coarse-paper-law) from=data/validation/den-4b-rig-coarse.yaml; material=den-concrete ;;
+    den-rig-coarse-second-band) from=data/validation/den-4b-rig-coarse.yaml; material=den-concrete-hordijk-second-band ;;
+    den-rig-coarse-second-band-implicit) from=data/validation/den-4b-rig-coarse-implicit.yaml; material=den-concrete-hordijk-second-band ;;
+    lpanel-coarse-paper-n) from=data/validation/lpanel-coarse.yaml; material=lpanel-concrete-paper-n ;;
+  esac
+  local old
+  old=$(sed -n 's|.*{file: ../materials/\([a-z-]*\)\.yaml}.*|\1|p' "$from" | head -1)
+  sed -e "s|{file: ../materials/$old.yaml}|{file: $PWD/data/materials/$material.yaml}|" \
+      -e "s|material: $old}|material: $material}|" -e "s|^name: .*|name: $name|" "$from" > "$out/scenes/$name.yaml"
+  echo "$out/scenes/$name.yaml"
+}
+
+for r in "${runs[@]}"; do
+  s=${scene[$r]}
+  [[ $s == variant ]] && s=$(variant "$r")
+  echo "== $r ($s)" >&2
+  start=$SECONDS
+  "$bin" "$s" --out "$out/$r" --threads "$threads" --no-vtu -q
+  echo "$r: exit $?, $((SECONDS - start)) s" >&2
+done
+
+# The comparisons (scripts/validation/compare.py) and the report (scripts/validation/report.py).
+for d in "$out"/*/; do
+  r=$(basename "$d")
+  [[ -f $d/history.csv ]] || continue
+  case "$r" in
+    den-today-*) python3 scripts/validation/compare.py den "$d" data/experiments/nooru-mohamed-4b.txt --t0 0.0008 --delta top > "$d/compare.json" ;;
+    den-*implicit*) python3 scripts/validation/compare.py den "$d" data/experiments/nooru-mohamed-4b.txt --t0 1 > "$d/compare.json" ;;
+    den-*) python3 scripts/validation/compare.py den "$d" data/experiments/nooru-mohamed-4b.txt --t0 0.0008 > "$d/compare.json" ;;
+    lpanel-*) python3 scripts/validation/compare.py lpanel "$d" data/experiments/winkler-lpanel-envelope.csv data/experiments/winkler-lpanel-series-a.csv > "$d/compare.json" ;;
+  esac
+done
+python3 scripts/validation/report.py "$out"
+# Every run asked for has its comparison (a failed run too: its status is in the table).
+missing=0
+for r in "${runs[@]}"; do
+  [[ -s $out/$r/compare.json ]] || { echo "error: $r has no comparison ($out/$r)" >&2; missing=1; }
+done
+exit $missing

@@ -1,0 +1,71 @@
+#!/usr/bin/env python3
+"""The validation report (scripts/validate.sh): per run, the comparison with the test
+(RUN/compare.json, scripts/validation/compare.py) and the run's own figures (RUN/summary.json), as
+markdown tables on stdout and OUT/summary.json; OUT/den.png and OUT/lpanel.png overlay the runs on
+the tests' curves (gnuplot). Usage: report.py OUT_DIR. Units: mm, N, s."""
+import json
+import os
+import subprocess
+import sys
+
+out = sys.argv[1]
+runs = sorted(d for d in os.listdir(out) if os.path.isfile(os.path.join(out, d, "compare.json")))
+report = {}
+for r in runs:
+    c = json.load(open(os.path.join(out, r, "compare.json")))
+    s = json.load(open(os.path.join(out, r, "summary.json")))
+    c["status"] = s.get("status")
+    c["wall_time_s"] = s.get("wall_time_s")
+    c["dissipated_N_mm"] = s.get("energies_Nmm", {}).get("dissipated")
+    report[r] = c
+json.dump(report, open(os.path.join(out, "summary.json"), "w"), indent=1)
+
+
+def fmt(v, f="{:.3g}"):
+    return "-" if v is None else f.format(v)
+
+
+den = [r for r in runs if r.startswith("den-")]
+if den:
+    print("| DEN 4b run | status | peak P (kN) | / test | delta at peak (mm) | post-peak distance | work to 0.1 mm (N mm) | slope (kN/um) | dissipated (N mm) | wall (s) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    t = report[den[0]]
+    print(f"| the test | | {t['test_peak_N'] / 1000:.2f} | 1 | {t['test_delta_at_peak_mm']:.4f} | 0 | {t['test_work_N_mm']:.0f} (to 0.1) | {t['test_initial_slope_kN_per_um']:.2f} | | |")
+    for r in den:
+        c = report[r]
+        print(f"| {r} ({c['delta_measured_by']}) | {c['status']} | {c['peak_N'] / 1000:.2f} | {c['peak_ratio']:.3f} | {c['delta_at_peak_mm']:.4f} | "
+              f"{fmt(c['post_peak_distance'])} | {c['work_N_mm']:.0f} (to {c['compared_up_to_mm']:.3f}) | {fmt(c['initial_slope_kN_per_um'])} | {fmt(c['dissipated_N_mm'], '{:.0f}')} | {fmt(c['wall_time_s'], '{:.0f}')} |")
+    print()
+lp = [r for r in runs if r.startswith("lpanel-")]
+if lp:
+    print("| L-panel run | status | peak F (kN) | u at peak (mm) | inside envelope | post-peak distance (series A) | work to 1 mm (N mm) | slope (kN/mm) | dissipated (N mm) | wall (s) |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    t = report[lp[0]]
+    print(f"| the tests | | {t['envelope_peak_N'][0] / 1000:.1f}-{t['envelope_peak_N'][1] / 1000:.1f} (A: {t['series_a_peak_N'] / 1000:.2f}) | 0.20 (A: {t['series_a_u_at_peak_mm']:.3f}) | | | A: {t['series_a_work_N_mm']:.0f} | A: {t['series_a_initial_slope_kN_per_mm']:.1f} | | |")
+    for r in lp:
+        c = report[r]
+        print(f"| {r} | {c['status']} | {c['peak_N'] / 1000:.2f} | {c['u_at_peak_mm']:.3f} | {fmt(c['inside_envelope_share'], '{:.0%}')} | "
+              f"{fmt(c['post_peak_distance_to_series_a'])} | {c['work_N_mm']:.0f} (to {c['compared_up_to_mm']:.2f}) | {fmt(c['initial_slope_kN_per_mm'])} | {fmt(c['dissipated_N_mm'], '{:.0f}')} | {fmt(c['wall_time_s'], '{:.0f}')} |")
+
+
+def plot(name, test_cmd, runs_, xcol, ycol, xlabel, ylabel, xmax):
+    if not runs_:
+        return
+    lines = [f"set terminal pngcairo size 1000,650", f"set output '{out}/{name}.png'", "set datafile separator ','",
+             f"set xlabel '{xlabel}'", f"set ylabel '{ylabel}'", f"set xrange [0:{xmax}]", "set key top right", "set grid"]
+    series = test_cmd + [f"'{out}/{r}/compare.csv' every ::1 using {xcol}:(${ycol}/1000) with lines lw 2 title '{r}'" for r in runs_]
+    lines.append("plot " + ", \\\n     ".join(series))
+    subprocess.run(["gnuplot"], input="\n".join(lines) + "\n", text=True, check=False)
+
+
+# The DEN's test curve as CSV (the file is whitespace-separated).
+with open(os.path.join(out, "test-4b.csv"), "w") as f:
+    for line in open("data/experiments/nooru-mohamed-4b.txt"):
+        if line.strip() and not line.startswith("#"):
+            f.write(",".join(line.split()) + "\n")
+plot("den", [f"'{out}/test-4b.csv' using 1:($2/1000) with linespoints lw 3 lc rgb 'black' pt 7 title 'test (Nooru-Mohamed 4b)'"],
+     den, 1, 2, "delta (mm)", "P (kN)", 0.1)
+plot("lpanel", ["'data/experiments/winkler-lpanel-envelope.csv' every ::1 using 1:2 with lines lw 3 lc rgb 'gray' title 'test envelope (lower)'",
+                "'data/experiments/winkler-lpanel-envelope.csv' every ::1 using 1:3 with lines lw 3 lc rgb 'gray' title 'test envelope (upper)'",
+                "'data/experiments/winkler-lpanel-series-a.csv' using 1:($2/1000) with lines lw 2 lc rgb 'black' title 'test series A'"],
+     lp, 1, 2, "load-point displacement u (mm)", "F (kN)", 1.0)
