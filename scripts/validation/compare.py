@@ -11,7 +11,9 @@ compare.py lpanel RUN_DIR ENVELOPE SERIES_A
                                       displacement (mm)
 Prints one JSON object: the peak, the displacement at the peak, the post-peak distance (the largest
 |P - P_test| over the compared range, as a fraction of the test's peak), the work of the load over
-the compared range (N mm), the share of the L-panel curve inside the envelope, and writes
+the compared range (N mm), the share of the L-panel curve inside the envelope, the elastic slope
+(a line through the rising branch up to 40 % of the peak, for ecm and the test alike),
+and writes
 RUN_DIR/compare.csv (displacement, ecm force, test force(s)) for the plots. Units: mm, N.
 """
 import csv
@@ -64,6 +66,19 @@ def work(xs, ys, upto):
     return w
 
 
+def elastic_slope(xs, ys):
+    """The slope of the rising branch: a least-squares line through the points before the peak whose
+    load is at most 40 % of the peak (the elastic part)."""
+    top = max(range(len(ys)), key=lambda k: ys[k])
+    pts = [(x, y) for x, y in zip(xs[:top + 1], ys[:top + 1]) if 0.0 <= y <= 0.4 * ys[top]]
+    if len(pts) < 2:
+        return None
+    n = len(pts)
+    mx, my = sum(p[0] for p in pts) / n, sum(p[1] for p in pts) / n
+    sxx = sum((p[0] - mx) ** 2 for p in pts)
+    return sum((p[0] - mx) * (p[1] - my) for p in pts) / sxx if sxx > 0 else None
+
+
 def monotone_envelope(xs, ys):
     """The curve as a function of a displacement that may go back (snap-back): keep the points whose
     displacement exceeds every earlier one (the curve a displacement-controlled test would record)."""
@@ -107,8 +122,8 @@ def den(run_dir, test_file, t0, delta_kind):
         "post_peak_distance": max(post) / ty[ti] if post else None,
         "compared_up_to_mm": upto,
         "work_N_mm": work(mx, my, upto), "test_work_N_mm": work(tx, ty, upto),
-        "initial_slope_kN_per_um": (interp(mx, my, 0.0006) - p[0]) / 0.6 / 1000 if mx[-1] > 0.0006 else None,
-        "test_initial_slope_kN_per_um": ty[1] / tx[1] / 1e6,
+        "initial_slope_kN_per_um": (lambda k: None if k is None else k / 1e6)(elastic_slope(d, p)),
+        "test_initial_slope_kN_per_um": (lambda k: None if k is None else k / 1e6)(elastic_slope(tx, ty)),
     }
 
 
@@ -144,8 +159,8 @@ def lpanel(run_dir, envelope_file, series_file):
         "inside_envelope_share": inside / total if total else None, "compared_up_to_mm": upto,
         "post_peak_distance_to_series_a": max(post) / sy[si] if post else None,
         "work_N_mm": work(mx, my, upto), "series_a_work_N_mm": work(sx, sy, min(upto, sx[-1])),
-        "initial_slope_kN_per_mm": interp(mx, my, 0.05) / 0.05 / 1000 if mx[-1] > 0.05 else None,
-        "series_a_initial_slope_kN_per_mm": interp(sx, sy, 0.05) / 0.05 / 1000,
+        "initial_slope_kN_per_mm": (lambda k: None if k is None else k / 1000)(elastic_slope(u, f)),
+        "series_a_initial_slope_kN_per_mm": (lambda k: None if k is None else k / 1000)(elastic_slope(sx, sy)),
     }
 
 
