@@ -41,6 +41,8 @@ declare -A scene=(
   [lpanel-coarse]=data/validation/lpanel-coarse.yaml
   [lpanel-coarse-implicit]=data/validation/lpanel-coarse-implicit.yaml
   [lpanel-coarse-paper-n]=variant
+  [lpanel-coarse-second-band]=variant
+  [lpanel-medium-second-band]=variant
   [lpanel-medium]=data/validation/lpanel-medium.yaml
   [lpanel-medium-implicit]=data/validation/lpanel-medium-implicit.yaml
   [lpanel-fine]=data/validation/lpanel-fine.yaml
@@ -49,11 +51,12 @@ runs=()
 for w in "$@"; do
   case "$w" in
     quick) runs+=(den-today-coarse den-rig-coarse-paper-law den-rig-coarse den-rig-coarse-implicit den-rig-coarse-second-band
-                  lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-implicit) ;;
-    medium) runs+=(den-rig-medium lpanel-medium lpanel-medium-implicit) ;;
+                  lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-second-band lpanel-coarse-implicit) ;;
+    medium) runs+=(den-rig-medium lpanel-medium lpanel-medium-second-band lpanel-medium-implicit) ;;
     fine) runs+=(den-rig-fine lpanel-fine) ;;
     all) runs+=(den-today-coarse den-rig-coarse-paper-law den-rig-coarse den-rig-coarse-implicit den-rig-coarse-second-band
-                lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-implicit den-rig-medium lpanel-medium lpanel-medium-implicit
+                lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-second-band lpanel-coarse-implicit den-rig-medium lpanel-medium
+                lpanel-medium-second-band lpanel-medium-implicit
                 den-rig-fine lpanel-fine) ;;
     report) ;;
     *) [[ -n ${scene[$w]:-} ]] || { echo "usage: scripts/validate.sh [OUT_DIR] [quick|medium|fine|all|report|RUN]... (RUN: ${!scene[*]})" >&2; exit 2; }
@@ -69,6 +72,8 @@ variant() {
     den-rig-coarse-second-band) from=data/validation/den-4b-rig-coarse.yaml; material=den-concrete-hordijk-second-band ;;
     den-rig-coarse-second-band-implicit) from=data/validation/den-4b-rig-coarse-implicit.yaml; material=den-concrete-hordijk-second-band ;;
     lpanel-coarse-paper-n) from=data/validation/lpanel-coarse.yaml; material=lpanel-concrete-paper-n ;;
+    lpanel-coarse-second-band) from=data/validation/lpanel-coarse.yaml; material=lpanel-concrete-hordijk-second-band ;;
+    lpanel-medium-second-band) from=data/validation/lpanel-medium.yaml; material=lpanel-concrete-hordijk-second-band ;;
   esac
   local old
   old=$(sed -n 's|.*{file: ../materials/\([a-z-]*\)\.yaml}.*|\1|p' "$from" | head -1)

@@ -53,7 +53,10 @@ def plot(name, test_cmd, runs_, xcol, ycol, xlabel, ylabel, xmax):
         return
     lines = [f"set terminal pngcairo size 1000,650", f"set output '{out}/{name}.png'", "set datafile separator ','",
              f"set xlabel '{xlabel}'", f"set ylabel '{ylabel}'", f"set xrange [0:{xmax}]", "set key top right", "set grid"]
-    series = test_cmd + [f"'{out}/{r}/compare.csv' every ::1 using {xcol}:(${ycol}/1000) with lines lw 2 title '{r}'" for r in runs_]
+    colours = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22",
+               "#7f7fff", "#ff7fbf", "#7fbf7f"]  # no black or gray: those are the tests'
+    series = test_cmd + [f"'{out}/{r}/compare.csv' every ::1 using {xcol}:(${ycol}/1000) with lines lw 2 lc rgb '{colours[i % len(colours)]}' title '{r}'"
+                         for i, r in enumerate(runs_)]
     lines.append("plot " + ", \\\n     ".join(series))
     subprocess.run(["gnuplot"], input="\n".join(lines) + "\n", text=True, check=False)
 
