@@ -3,6 +3,7 @@
 #include <array>
 
 #include "driver/point_driver_3d.hpp"
+#include "driver/segment_components_yaml.hpp"
 #include "io/material_yaml.hpp"
 #include "io/value_error.hpp"
 
@@ -19,14 +20,7 @@ constexpr std::array<const char*, 6> kStressKeys = {"sig_xx", "sig_yy", "sig_zz"
 Segment3 readSegment3(const YamlMap& m) {
   Segment3 s;
   s.increments = m.get<int>("increments", Range{1.0, 1e9, true, true});
-  for (int c = 0; c < 6; ++c) {
-    const bool strain = m.has(kStrainKeys[c]), stress = m.has(kStressKeys[c]);
-    if (strain == stress)
-      m.failHere(std::string("give exactly one of '") + kStrainKeys[c] + "' (strain) or '" + kStressKeys[c] +
-                 "' (stress, MPa)");
-    s.control[c] = strain ? Control::Strain : Control::Stress;
-    s.target[c] = m.get<double>(strain ? kStrainKeys[c] : kStressKeys[c], Range::any());
-  }
+  readSegmentComponents(m, kStrainKeys, kStressKeys, s.control, s.target);
   return s;
 }
 

@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "driver/segment_components_yaml.hpp"
 #include "io/material_yaml.hpp"
 #include "io/value_error.hpp"
 
@@ -19,14 +20,7 @@ constexpr std::array<const char*, 3> kStressKeys = {"sig_xx", "sig_yy", "sig_xy"
 Segment readSegment(const YamlMap& m) {
   Segment s;
   s.increments = m.get<int>("increments", Range{1.0, 1e9, true, true});
-  for (int c = 0; c < 3; ++c) {
-    const bool strain = m.has(kStrainKeys[c]), stress = m.has(kStressKeys[c]);
-    if (strain == stress)
-      m.failHere(std::string("give exactly one of '") + kStrainKeys[c] + "' (strain) or '" + kStressKeys[c] +
-                 "' (stress, MPa)");
-    s.control[c] = strain ? Control::Strain : Control::Stress;
-    s.target[c] = m.get<double>(strain ? kStrainKeys[c] : kStressKeys[c], Range::any());
-  }
+  readSegmentComponents(m, kStrainKeys, kStressKeys, s.control, s.target);
   if (m.has("opening")) {
     s.openingControl = true;
     s.openingTarget = m.get<double>("opening", Range::positive());

@@ -57,6 +57,20 @@ class BandDamageLaw {
   LoadingSurface envelope(double integrity) const { return envelope(loadingSurface(integrity)); }
   static LoadingSurface envelope(const LoadingSurface& s) { return {s.integrity, s.threshold, true, s.integrityPower}; }
 
+  // The integrity at the end of an increment whose driving force is `y` (Eqs. (12)-(13)), from the
+  // surface of its start: loading where Y > F(x0) (x solves F(x) = Y below x0), the healed
+  // envelope below the surface when the surface asks for it, x0 otherwise; and dx/dY = 1 / F'(x)
+  // where the tangent is the loading one (0 where F' overflows near the underflow limit: the
+  // damage then no longer changes the vanishing stress). The scalar part of evaluate(), shared
+  // with the 3D point (TwoPhasePoint3D::evaluateBand).
+  struct IntegrityResponse {
+    double integrity = 1.0;
+    bool loading = false;         // damage grew
+    bool loadingTangent = false;  // the tangent takes dx/dY
+    double dxdy = 0.0;
+  };
+  IntegrityResponse integrityFor(const LoadingSurface& surface, double y, bool loadingTangent) const;
+
   // Pure: does not change any state. The surface is that of the start of the increment.
   // With loadingTangent, a point exactly on the loading surface gets the one-sided loading
   // tangent (docs/model.md pitfall 2) instead of the secant.

@@ -49,29 +49,16 @@ TwoPhasePoint3D::TwoPhasePoint3D(const EnrichedParams& p)
 
 BandResponse3 TwoPhasePoint3D::evaluateBand(const BandDamageLaw::LoadingSurface& surface, const Voigt6& strain,
                                             bool loadingTangent) const {
-  const DamageLawParams& law = law_.law();
-  const double x0 = surface.integrity, threshold = surface.threshold, onsetY = law_.onsetDrivingForce();
   BandResponse3 r;
   const Voigt6 effective = stiffness_ * strain;
   const DrivingForce3 y = drivingForce3(effective, e_, nu_);  // Eq. (12)
   r.drivingForce = y.value;
-  r.loading = y.value > threshold;
-  PoweredIntegrity x{x0, 0.0};
-  if (r.loading)
-    x = solveIntegrity(law, y.value, {x0, surface.integrityPower > 0.0 ? surface.integrityPower : std::pow(x0, law.softeningExponent)});
-  else if (surface.envelope && y.value > onsetY)
-    x = solveIntegrity(law, y.value, {1.0, 1.0});  // below the surface: the healed envelope
-  else if (surface.envelope)
-    x = {1.0, 1.0};
-  r.integrity = x.x;
+  const BandDamageLaw::IntegrityResponse x = law_.integrityFor(surface, y.value, loadingTangent);  // Eq. (13)
+  r.loading = x.loading;
+  r.integrity = x.integrity;
   r.stress = r.integrity * effective;  // Eq. (11)
-  const bool onSurface = y.value >= threshold * (1.0 - 1e-12) && y.value > 0.0;
-  const bool onEnvelope = surface.envelope && y.value > onsetY;
-  if ((r.loading || onEnvelope || (loadingTangent && onSurface)) && r.integrity > 0.0) {
-    // dx/deps = (dx/dY) (dY/dsigma) a, with dx/dY = 1 / F'(x) (zero where F' overflows)
-    const double slope = x.xn > 0.0 ? damageFunctionSlope(law, r.integrity, x.xn) : damageFunctionSlope(law, r.integrity);
-    const double dxdy = std::isfinite(slope) && slope != 0.0 ? 1.0 / slope : 0.0;
-    const Eigen::Matrix<double, 1, 6> dxde = dxdy * (y.stressGradient.transpose() * stiffness_);
+  if (x.loadingTangent) {  // dx/deps = (dx/dY) (dY/dsigma) a
+    const Eigen::Matrix<double, 1, 6> dxde = x.dxdy * (y.stressGradient.transpose() * stiffness_);
     r.tangent = r.integrity * stiffness_ + effective * dxde;
   } else {
     r.tangent = r.integrity * stiffness_;
