@@ -5,10 +5,11 @@
 # law's shape from Hordijk's curve; nothing fitted to the structural curves.
 # Run after the build (cmake -S . -B build -G Ninja && ninja -C build).
 # Usage: scripts/validate.sh [OUT_DIR] [WHAT...]   (default: results/validation quick)
-#   WHAT: quick     the coarse meshes: DEN explicit and implicit, L-panel explicit and implicit,
+#   WHAT: quick     the coarse meshes: DEN explicit and implicit, L-panel explicit (one and two
+#                   bands) and implicit,
 #                   and the DEN's gap accounting (today's scene, the rig with the paper's law, the
 #                   second band), about 5 minutes on 2 threads
-#         medium    the medium meshes (DEN and L-panel, explicit; L-panel implicit), ~15 minutes
+#         medium    the medium meshes (DEN and L-panel, explicit and implicit), about an hour
 #         fine      the fine meshes (explicit), ~1 hour
 #         all       quick medium fine
 #         RUN       one run by name (see `runs` below)
@@ -52,11 +53,11 @@ for w in "$@"; do
   case "$w" in
     quick) runs+=(den-today-coarse den-rig-coarse-paper-law den-rig-coarse den-rig-coarse-implicit den-rig-coarse-second-band
                   lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-second-band lpanel-coarse-implicit) ;;
-    medium) runs+=(den-rig-medium lpanel-medium lpanel-medium-second-band lpanel-medium-implicit) ;;
+    medium) runs+=(den-rig-medium den-rig-medium-implicit lpanel-medium lpanel-medium-second-band lpanel-medium-implicit) ;;
     fine) runs+=(den-rig-fine lpanel-fine) ;;
     all) runs+=(den-today-coarse den-rig-coarse-paper-law den-rig-coarse den-rig-coarse-implicit den-rig-coarse-second-band
                 lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-second-band lpanel-coarse-implicit den-rig-medium lpanel-medium
-                lpanel-medium-second-band lpanel-medium-implicit
+                den-rig-medium-implicit lpanel-medium-second-band lpanel-medium-implicit
                 den-rig-fine lpanel-fine) ;;
     report) ;;
     *) [[ -n ${scene[$w]:-} ]] || { echo "usage: scripts/validate.sh [OUT_DIR] [quick|medium|fine|all|report|RUN]... (RUN: ${!scene[*]})" >&2; exit 2; }
