@@ -140,6 +140,24 @@ std::string updatePlaneStress(const Inputs& in, const Outputs& out, const Materi
 
 }  // namespace
 
+void rotateBandState(double* s, const double* drot) {
+  if (s[kCracked] != 1.0) return;
+  Eigen::Matrix3d r;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) r(i, j) = drot[i + 3 * j];  // Fortran DROT(i, j)
+  if (r == Eigen::Matrix3d::Identity()) return;
+  Eigen::Vector3d n(s[kNormal], s[kNormal + 1], s[kNormal + 2]), jump(s[kJump], s[kJump + 1], s[kJump + 2]);
+  n = r * n, jump = r * jump;
+  // eps_on as a tensor (half the engineering shears), ecm's order xx, yy, zz, yz, xz, xy.
+  const double* e = s + kOnsetStrain;
+  Eigen::Matrix3d t;
+  t << e[0], 0.5 * e[5], 0.5 * e[4], 0.5 * e[5], e[1], 0.5 * e[3], 0.5 * e[4], 0.5 * e[3], e[2];
+  t = r * t * r.transpose();
+  const double onset[6] = {t(0, 0), t(1, 1), t(2, 2), 2.0 * t(1, 2), 2.0 * t(0, 2), 2.0 * t(0, 1)};
+  for (int i = 0; i < 3; ++i) s[kNormal + i] = n[i], s[kJump + i] = jump[i];
+  for (int i = 0; i < 6; ++i) s[kOnsetStrain + i] = onset[i];
+}
+
 MaterialParams materialFromProps(const double* props, int nprops, Hypothesis hypothesis) {
   MaterialParams p;
   p.name = "umat";
@@ -207,6 +225,7 @@ std::string update(const Inputs& in, const Outputs& out, bool& fatal) {
   fatal = true;
   if (std::string why = propsProblem(in); !why.empty()) return why;
   fatal = false;
+  if (in.drot) rotateBandState(out.statev, in.drot);  // NLGEOM: the band turns with the material
   UpdateOptions options(in.props[kSnapBack] == 1.0 ? SnapBackPolicy::Release : SnapBackPolicy::Stop, true);
   options.substepLevels = in.nprops > kSubstepLevels ? static_cast<int>(in.props[kSubstepLevels]) : 10;
   const double bigH = enriched(in.props) ? effectiveSizeOf(in) : 1.0;
@@ -221,12 +240,12 @@ extern "C" void umat_(double* stress, double* statev, double* ddsdde, double* ss
                       const double* dstran, const double* /*time*/, const double* /*dtime*/, const double* /*temp*/,
                       const double* /*dtemp*/, const double* /*predef*/, const double* /*dpred*/, const char* /*cmname*/,
                       const int* ndi, const int* nshr, const int* ntens, const int* nstatv, const double* props,
-                      const int* nprops, const double* /*coords*/, const double* /*drot*/, double* pnewdt,
+                      const int* nprops, const double* /*coords*/, const double* drot, double* pnewdt,
                       const double* celent, const double* /*dfgrd0*/, const double* /*dfgrd1*/, const int* noel,
                       const int* npt, const int* /*layer*/, const int* /*kspt*/, const int* /*kstep*/,
                       const int* /*kinc*/, size_t /*cmname_len*/) {
   using namespace ecm::umat;
-  const Inputs in{stran, dstran, *ndi, *nshr, *ntens, *nstatv, *nprops, props, celent ? *celent : 0.0};
+  const Inputs in{stran, dstran, *ndi, *nshr, *ntens, *nstatv, *nprops, props, celent ? *celent : 0.0, drot};
   const Outputs out{stress, statev, ddsdde, sse, spd, pnewdt};
   bool fatal = false;
   std::string why;

@@ -46,7 +46,13 @@ struct Inputs {
   int ndi, nshr, ntens, nstatv, nprops;
   const double* props;
   double celent;         // the element's characteristic length (0 if the caller gives none)
+  const double* drot = nullptr;  // the rotation increment R (3 x 3, column-major), or none: the identity
 };
+
+// A cracked point's band state in STATEV carried along the increment's rigid rotation R (DROT,
+// with NLGEOM): n <- R n, [u] <- R [u], eps_on <- R eps_on R^T, as the caller rotates STRESS and
+// STRAN (docs/fe-codes.md). An intact point has nothing to rotate.
+void rotateBandState(double* statev, const double* drot);
 
 struct Outputs {
   double* stress;  // NTENS, Abaqus order

@@ -3,6 +3,7 @@
 // against the material library's own point (Material3D, Material): equal to 1e-12.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -38,10 +39,12 @@ struct Caller {
     std::vector<double> stress, statev, ddsdde;
     double sse, spd, pnewdt;
   };
-  Trial call(const std::vector<double>& dstran) const {
+  // `rotation`: DROT (column-major), the identity when not given.
+  Trial call(const std::vector<double>& dstran, const double* rotation = nullptr) const {
     Trial t{stress, statev, ddsdde, sse, spd, 1.0};
     double scd = 0, rpl = 0, ddsddt[6] = {}, drplde[6] = {}, drpldt = 0, time[2] = {0, 0}, dtime = 1, temp = 0, dtemp = 0;
     double predef = 0, dpred = 0, coords[3] = {}, drot[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, dfgrd[9] = {};
+    if (rotation) std::copy(rotation, rotation + 9, drot);
     const int nprops = static_cast<int>(props.size()), noel = 1, npt = 1, layer = 1, kspt = 1, kstep[4] = {1, 1, 0, 0}, kinc = 1;
     const char cmname[80] = "ABAQUS_ECM";
     umat_(t.stress.data(), t.statev.data(), t.ddsdde.data(), &t.sse, &t.spd, &scd, &rpl, ddsddt, drplde, &drpldt,
@@ -232,6 +235,43 @@ TEST(Umat, EqualsEcmPointIn3DAlongItsHistory) {
     EXPECT_NEAR(t.spd, row.dissipation, 1e-12 * (row.dissipation + 1e-12));
   }
   EXPECT_GT(run.history.back().damage, 0.5);
+}
+
+// A symmetric tensor in Abaqus's 3D order (11, 22, 33, 12, 13, 23), `shear` 2 for engineering
+// strains and 1 for stresses, turned by R: R T R^T, back in the same order.
+std::vector<double> rotatedAbaqus(const std::vector<double>& v, const Eigen::Matrix3d& r, double shear) {
+  Eigen::Matrix3d t;
+  t << v[0], v[3] / shear, v[4] / shear, v[3] / shear, v[1], v[5] / shear, v[4] / shear, v[5] / shear, v[2];
+  t = r * t * r.transpose();
+  return {t(0, 0), t(1, 1), t(2, 2), shear * t(0, 1), shear * t(0, 2), shear * t(1, 2)};
+}
+
+// With NLGEOM the caller turns STRESS and STRAN with the increment's rotation DROT and the UMAT
+// turns its own state: a cracked point turned rigidly by R and loaded by the turned increment
+// answers the turned stress (objectivity: to 1e-12 of f_t'), and its band normal is R n. Without
+// the state turned (DROT the identity) the same call answers a stress off by more than 0.1 f_t'.
+TEST(Umat, ACrackedPointTurnsWithDrot) {
+  Caller a(3, 3, concreteProps(10.0));
+  for (int i = 0; i < 50; ++i) a.commit({4e-6, -0.2e-6, -0.1e-6, 0.3e-6, 0, 0});  // past the peak along x
+  ASSERT_EQ(a.statev[kCracked], 1.0);
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1.0, 2.0, 2.0).normalized()).toRotationMatrix();
+  double drot[9];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) drot[i + 3 * j] = r(i, j);
+  Caller b = a;  // the same point, turned: the caller has turned its stress and strain
+  b.stran = rotatedAbaqus(a.stran, r, 2.0);
+  b.stress = rotatedAbaqus(a.stress, r, 1.0);
+  const std::vector<double> d = {2e-6, 0.1e-6, 0.0, 0.4e-6, 0.0, 0.0};
+  const Caller::Trial plain = a.call(d);
+  const Caller::Trial turned = b.call(rotatedAbaqus(d, r, 2.0), drot);
+  const std::vector<double> expected = rotatedAbaqus(plain.stress, r, 1.0);
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(turned.stress[i], expected[i], 1e-12 * test::kFt) << i;
+  const Eigen::Vector3d n = r * Eigen::Vector3d(a.statev[kNormal], a.statev[kNormal + 1], a.statev[kNormal + 2]);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(turned.statev[kNormal + i], n[i], 1e-12) << i;
+  const Caller::Trial unturned = b.call(rotatedAbaqus(d, r, 2.0));
+  double off = 0.0;
+  for (int i = 0; i < 6; ++i) off = std::max(off, std::abs(unturned.stress[i] - expected[i]));
+  EXPECT_GT(off, 0.1 * test::kFt);
 }
 
 }  // namespace
