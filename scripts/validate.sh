@@ -10,7 +10,7 @@
 #                   and the DEN's gap accounting (today's scene, the rig with the paper's law, the
 #                   second band), about 5 minutes on 2 threads
 #         medium    the medium meshes (DEN and L-panel, explicit and implicit), about an hour
-#         fine      the fine meshes (explicit), ~1 hour
+#         fine      the fine meshes (explicit; the L-panel with one and two bands), ~2-3 hours
 #         all       quick medium fine
 #         RUN       one run by name (see `runs` below)
 #         report    no run: the tables and plots of what is in OUT_DIR
@@ -44,6 +44,7 @@ declare -A scene=(
   [lpanel-coarse-paper-n]=variant
   [lpanel-coarse-second-band]=variant
   [lpanel-medium-second-band]=variant
+  [lpanel-fine-second-band]=variant
   [lpanel-medium]=data/validation/lpanel-medium.yaml
   [lpanel-medium-implicit]=data/validation/lpanel-medium-implicit.yaml
   [lpanel-fine]=data/validation/lpanel-fine.yaml
@@ -54,11 +55,11 @@ for w in "$@"; do
     quick) runs+=(den-today-coarse den-rig-coarse-paper-law den-rig-coarse den-rig-coarse-implicit den-rig-coarse-second-band
                   lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-second-band lpanel-coarse-implicit) ;;
     medium) runs+=(den-rig-medium den-rig-medium-implicit lpanel-medium lpanel-medium-second-band lpanel-medium-implicit) ;;
-    fine) runs+=(den-rig-fine lpanel-fine) ;;
+    fine) runs+=(den-rig-fine lpanel-fine lpanel-fine-second-band) ;;
     all) runs+=(den-today-coarse den-rig-coarse-paper-law den-rig-coarse den-rig-coarse-implicit den-rig-coarse-second-band
                 lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-second-band lpanel-coarse-implicit den-rig-medium lpanel-medium
                 den-rig-medium-implicit lpanel-medium-second-band lpanel-medium-implicit
-                den-rig-fine lpanel-fine) ;;
+                den-rig-fine lpanel-fine lpanel-fine-second-band) ;;
     report) ;;
     *) [[ -n ${scene[$w]:-} ]] || { echo "usage: scripts/validate.sh [OUT_DIR] [quick|medium|fine|all|report|RUN]... (RUN: ${!scene[*]})" >&2; exit 2; }
        runs+=("$w") ;;
@@ -75,6 +76,7 @@ variant() {
     lpanel-coarse-paper-n) from=data/validation/lpanel-coarse.yaml; material=lpanel-concrete-paper-n ;;
     lpanel-coarse-second-band) from=data/validation/lpanel-coarse.yaml; material=lpanel-concrete-hordijk-second-band ;;
     lpanel-medium-second-band) from=data/validation/lpanel-medium.yaml; material=lpanel-concrete-hordijk-second-band ;;
+    lpanel-fine-second-band) from=data/validation/lpanel-fine.yaml; material=lpanel-concrete-hordijk-second-band ;;
   esac
   local old
   old=$(sed -n 's|.*{file: ../materials/\([a-z-]*\)\.yaml}.*|\1|p' "$from" | head -1)
