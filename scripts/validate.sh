@@ -45,6 +45,8 @@ declare -A scene=(
   [lpanel-coarse-second-band]=variant
   [lpanel-medium-second-band]=variant
   [lpanel-fine-second-band]=variant
+  [lpanel-coarse-second-band-implicit]=variant
+  [lpanel-medium-second-band-implicit]=variant
   [lpanel-medium]=data/validation/lpanel-medium.yaml
   [lpanel-medium-implicit]=data/validation/lpanel-medium-implicit.yaml
   [lpanel-fine]=data/validation/lpanel-fine.yaml
@@ -53,12 +55,13 @@ runs=()
 for w in "$@"; do
   case "$w" in
     quick) runs+=(den-today-coarse den-rig-coarse-paper-law den-rig-coarse den-rig-coarse-implicit den-rig-coarse-second-band
-                  lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-second-band lpanel-coarse-implicit) ;;
-    medium) runs+=(den-rig-medium den-rig-medium-implicit lpanel-medium lpanel-medium-second-band lpanel-medium-implicit) ;;
+                  lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-second-band lpanel-coarse-implicit lpanel-coarse-second-band-implicit) ;;
+    medium) runs+=(den-rig-medium den-rig-medium-implicit lpanel-medium lpanel-medium-second-band lpanel-medium-implicit lpanel-medium-second-band-implicit) ;;
     fine) runs+=(den-rig-fine lpanel-fine lpanel-fine-second-band) ;;
     all) runs+=(den-today-coarse den-rig-coarse-paper-law den-rig-coarse den-rig-coarse-implicit den-rig-coarse-second-band
                 lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-second-band lpanel-coarse-implicit den-rig-medium lpanel-medium
                 den-rig-medium-implicit lpanel-medium-second-band lpanel-medium-implicit
+                lpanel-coarse-second-band-implicit lpanel-medium-second-band-implicit
                 den-rig-fine lpanel-fine lpanel-fine-second-band) ;;
     report) ;;
     *) [[ -n ${scene[$w]:-} ]] || { echo "usage: scripts/validate.sh [OUT_DIR] [quick|medium|fine|all|report|RUN]... (RUN: ${!scene[*]})" >&2; exit 2; }
@@ -76,6 +79,8 @@ variant() {
     lpanel-coarse-paper-n) from=data/validation/lpanel-coarse.yaml; material=lpanel-concrete-paper-n ;;
     lpanel-coarse-second-band) from=data/validation/lpanel-coarse.yaml; material=lpanel-concrete-hordijk-second-band ;;
     lpanel-medium-second-band) from=data/validation/lpanel-medium.yaml; material=lpanel-concrete-hordijk-second-band ;;
+    lpanel-coarse-second-band-implicit) from=data/validation/lpanel-coarse-implicit.yaml; material=lpanel-concrete-hordijk-second-band ;;
+    lpanel-medium-second-band-implicit) from=data/validation/lpanel-medium-implicit.yaml; material=lpanel-concrete-hordijk-second-band ;;
     lpanel-fine-second-band) from=data/validation/lpanel-fine.yaml; material=lpanel-concrete-hordijk-second-band ;;
   esac
   local old
