@@ -39,6 +39,8 @@ declare -A scene=(
   [den-rig-coarse-paper-law]=variant
   [den-rig-coarse-second-band]=variant
   [den-rig-coarse-second-band-implicit]=variant
+  [den-rig-medium-second-band]=variant
+  [den-rig-fine-second-band]=variant
   [lpanel-coarse]=data/validation/lpanel-coarse.yaml
   [lpanel-coarse-implicit]=data/validation/lpanel-coarse-implicit.yaml
   [lpanel-coarse-paper-n]=variant
@@ -56,13 +58,13 @@ for w in "$@"; do
   case "$w" in
     quick) runs+=(den-today-coarse den-rig-coarse-paper-law den-rig-coarse den-rig-coarse-implicit den-rig-coarse-second-band
                   lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-second-band lpanel-coarse-implicit lpanel-coarse-second-band-implicit) ;;
-    medium) runs+=(den-rig-medium den-rig-medium-implicit lpanel-medium lpanel-medium-second-band lpanel-medium-implicit lpanel-medium-second-band-implicit) ;;
-    fine) runs+=(den-rig-fine lpanel-fine lpanel-fine-second-band) ;;
+    medium) runs+=(den-rig-medium den-rig-medium-second-band den-rig-medium-implicit lpanel-medium lpanel-medium-second-band lpanel-medium-implicit lpanel-medium-second-band-implicit) ;;
+    fine) runs+=(den-rig-fine den-rig-fine-second-band lpanel-fine lpanel-fine-second-band) ;;
     all) runs+=(den-today-coarse den-rig-coarse-paper-law den-rig-coarse den-rig-coarse-implicit den-rig-coarse-second-band
                 lpanel-coarse lpanel-coarse-paper-n lpanel-coarse-second-band lpanel-coarse-implicit den-rig-medium lpanel-medium
                 den-rig-medium-implicit lpanel-medium-second-band lpanel-medium-implicit
-                lpanel-coarse-second-band-implicit lpanel-medium-second-band-implicit
-                den-rig-fine lpanel-fine lpanel-fine-second-band) ;;
+                lpanel-coarse-second-band-implicit lpanel-medium-second-band-implicit den-rig-medium-second-band
+                den-rig-fine den-rig-fine-second-band lpanel-fine lpanel-fine-second-band) ;;
     report) ;;
     *) [[ -n ${scene[$w]:-} ]] || { echo "usage: scripts/validate.sh [OUT_DIR] [quick|medium|fine|all|report|RUN]... (RUN: ${!scene[*]})" >&2; exit 2; }
        runs+=("$w") ;;
@@ -76,6 +78,8 @@ variant() {
     den-rig-coarse-paper-law) from=data/validation/den-4b-rig-coarse.yaml; material=den-concrete ;;
     den-rig-coarse-second-band) from=data/validation/den-4b-rig-coarse.yaml; material=den-concrete-hordijk-second-band ;;
     den-rig-coarse-second-band-implicit) from=data/validation/den-4b-rig-coarse-implicit.yaml; material=den-concrete-hordijk-second-band ;;
+    den-rig-medium-second-band) from=data/validation/den-4b-rig-medium.yaml; material=den-concrete-hordijk-second-band ;;
+    den-rig-fine-second-band) from=data/validation/den-4b-rig-fine.yaml; material=den-concrete-hordijk-second-band ;;
     lpanel-coarse-paper-n) from=data/validation/lpanel-coarse.yaml; material=lpanel-concrete-paper-n ;;
     lpanel-coarse-second-band) from=data/validation/lpanel-coarse.yaml; material=lpanel-concrete-hordijk-second-band ;;
     lpanel-medium-second-band) from=data/validation/lpanel-medium.yaml; material=lpanel-concrete-hordijk-second-band ;;
