@@ -87,12 +87,14 @@ struct ImplicitSolver::Attempt {
   Eigen::VectorXd externalStart;         // the same at the step's start
   Eigen::VectorXd startForce;            // the internal forces at the step's start (du = 0), on its geometry
   Eigen::VectorXd direction;             // indirect control: the driven components' reference (mm per unit load factor)
-  // The platens (mpm/implicit/platen_reduction.hpp): per platen, which degrees of freedom are
-  // prescribed in the step, their increments and (indirect control) their reference; the change
-  // of unknowns (none without platens) and the reduced tangent last factorised.
+  // The platens (mpm/implicit/unknown_reduction.hpp): per platen, which degrees of freedom are
+  // prescribed in the step, their increments and (indirect control) their reference; the nodes
+  // tied to their neighbours (mpm/implicit/node_ties.hpp); the change of unknowns (none without
+  // platens and ties) and the reduced tangent last factorised.
   std::vector<std::array<bool, 3>> platenPrescribed;
   std::vector<Eigen::Vector3d> platenIncrement, platenDirection;
-  std::optional<PlatenReduction> reduction;
+  std::vector<NodeTie> ties;
+  std::optional<UnknownReduction> reduction;
   Eigen::SparseMatrix<double> reducedTangent;
   double dLambda = 0.0;                  // indirect control: the load factor's increment
   double dTau = 0.0;                     // indirect control: the opening's increment
@@ -126,8 +128,8 @@ struct ImplicitSolver::Attempt {
 
 namespace {
 
-// The tangent to factorise: K, or T^T K T with platens (kept in the attempt).
-const Eigen::SparseMatrix<double>& tangentOfTrial(const Trial& t, std::optional<PlatenReduction>& reduction,
+// The tangent to factorise: K, or T^T K T with platens or ties (kept in the attempt).
+const Eigen::SparseMatrix<double>& tangentOfTrial(const Trial& t, std::optional<UnknownReduction>& reduction,
                                                   Eigen::SparseMatrix<double>& reduced) {
   if (!reduction) return t.tangent;
   reduced = reduceTangent(*reduction, t.tangent);
@@ -215,10 +217,23 @@ bool ImplicitSolver::prepare(double dt, const IndirectControl* control, Attempt&
     }
     geometryStep_ = steps_;
   }
+  // Nodes the body barely reaches: tied to their neighbours (neither a prescribed component nor a
+  // platen's node is tied; a platen's node is no source).
+  {
+    const auto nodes = static_cast<std::size_t>(grid.nodeCount());
+    std::vector<std::uint8_t> mayTie(nodes, 1), maySource(nodes, 1);
+    for (std::size_t n = 0; n < nodes; ++n) mayTie[n] = !a.prescribed[2 * n] && !a.prescribed[2 * n + 1];
+    for (const PlatenState& platen : platens_)
+      for (const std::int32_t node : platen.nodes) mayTie[static_cast<std::size_t>(node)] = maySource[static_cast<std::size_t>(node)] = 0;
+    a.ties = weakNodeTies(grid.nodesX(), grid.nodesY(), geometry_.share, mayTie, maySource);
+  }
   a.reduction.reset();
-  if (!platens_.empty()) {
-    a.reduction = platenReduction(scene, platens_, geometry_.dofs, a.platenPrescribed);
-    if (a.platenPrescribed != platenLayout_) platenLayout_ = a.platenPrescribed, ++platenLayouts_;  // a factorisation of other unknowns
+  if (!platens_.empty() || !a.ties.empty()) {
+    a.reduction = unknownReduction(scene, platens_, geometry_.dofs, a.platenPrescribed, a.ties);
+    if (a.platenPrescribed != platenLayout_ || a.ties != tieLayout_)  // a factorisation of other unknowns
+      platenLayout_ = a.platenPrescribed, tieLayout_ = a.ties, ++reductionLayouts_;
+    applyTies(a.ties, a.du);  // a prescribed source's increment (the others are 0 here)
+    applyTies(a.ties, a.direction);
   }
   // Loads and gravity at the step's start and end.
   const int nx = grid.nodesX(), support = supportSize(scene.solver.shapeFunction);
@@ -350,7 +365,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
   const auto components = a.du.size();
   // Newton on the unknowns.
   const DofMap& dofs = geometry_.dofs;
-  const PlatenReduction* reduction = a.reduction ? &*a.reduction : nullptr;  // the platens' change of unknowns
+  const UnknownReduction* reduction = a.reduction ? &*a.reduction : nullptr;  // the platens' and ties' change of unknowns
   const int n = reduction ? reduction->reduced() : dofs.unknowns();
   const auto residualOf = [&](const Trial& t, double& relative) {
     const Eigen::VectorXd r = onUnknowns(dofs, reduction, [&](std::int32_t c) { return a.external[c] - t.internalForce[c]; });
@@ -378,7 +393,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
     if (!delta.allFinite()) return a.fail(0, 0.0, NewtonFailure::Singular, "the tangent at the step's start is singular");
     if (!reduction) {
       for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] = delta[u];
-    } else {  // a platen's node components carry their prescribed increments already
+    } else {  // a platen's or a tie's node components carry their prescribed increments already
       const Eigen::VectorXd onNodes = toUnknowns(reduction, delta);
       for (int u = 0; u < dofs.unknowns(); ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] += onNodes[u];
     }
@@ -452,7 +467,7 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
   if (!prepare(0.0, &control, a)) return false;
   const auto components = a.du.size();
   const DofMap& dofs = geometry_.dofs;
-  const PlatenReduction* reduction = a.reduction ? &*a.reduction : nullptr;  // the platens' change of unknowns
+  const UnknownReduction* reduction = a.reduction ? &*a.reduction : nullptr;  // the platens' and ties' change of unknowns
   const int n = reduction ? reduction->reduced() : dofs.unknowns();
   // The control's coefficients per node component, and over the (reduced) unknowns.
   Eigen::VectorXd c = Eigen::VectorXd::Zero(components);
@@ -482,6 +497,7 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
       const double d = a.direction[k];
       a.du[k] = scale * (d == 0.0 ? lastIncrement_[k] : lastIncrement_[k] - lastLoadFactorIncrement_ * d);
     }
+    applyTies(a.ties, a.du);  // the last step may have tied other nodes
     dLambda = scale * lastLoadFactorIncrement_;
     extrapolated = true;
   }
@@ -595,7 +611,10 @@ void ImplicitSolver::commit(const Attempt& a, double dt) {
     totals_.dissipated += p.volume[i] * t.dissipation[i];
   }
   if (!t.integrity.empty()) p.integrity = t.integrity;
-  // Reactions: what the constraints add to the loads to balance the internal forces.
+  // Reactions: what the constraints add to the loads to balance the internal forces (a tied
+  // node's unbalanced force belongs to its sources: T^T).
+  Eigen::VectorXd unbalanced = t.internalForce - a.external;
+  transferTies(a.ties, unbalanced);
   for (std::size_t c = 0; c < conditions_.size(); ++c) {
     ConditionState& state = conditions_[c];
     const NodeCondition& cond = scene.conditions[c];
@@ -603,7 +622,7 @@ void ImplicitSolver::commit(const Attempt& a, double dt) {
     for (const std::int32_t node : state.nodes)
       for (int d = 0; d < 2; ++d)
         if (a.prescribed[2 * static_cast<std::size_t>(node) + static_cast<std::size_t>(d)])
-          state.reaction[d] += t.internalForce[2 * node + d] - a.external[2 * node + d];
+          state.reaction[d] += unbalanced[2 * node + d];
     for (int d = 0; d < 2; ++d) {
       const ComponentCondition& k = cond.component[static_cast<std::size_t>(d)];
       if (cond.field) continue;
@@ -619,11 +638,21 @@ void ImplicitSolver::commit(const Attempt& a, double dt) {
   // forces the loads and the constraints apply (at a prescribed component the internal force, at a
   // free one the load), and the internal work sum_p V (sigma_n + sigma_n+1)/2 : d eps_p.
   // They differ by the work of the residual: the check of equilibrium in energy.
+  // A tied node's forces are its sources' (T^T) and its increment theirs: it is skipped.
   double external = 0.0;
-  for (Eigen::Index k = 0; k < a.du.size(); ++k) {
-    if (a.du[k] == 0.0) continue;
-    const bool held = geometry_.dofs.unknownOf[static_cast<std::size_t>(k)] == DofMap::kPrescribed;
-    external += 0.5 * (held ? a.startForce[k] + t.internalForce[k] : a.externalStart[k] + a.external[k]) * a.du[k];
+  {
+    Eigen::VectorXd startForce = a.startForce, endForce = t.internalForce, loadStart = a.externalStart, load = a.external;
+    std::vector<std::uint8_t> tied;
+    if (!a.ties.empty()) {
+      for (Eigen::VectorXd* v : {&startForce, &endForce, &loadStart, &load}) transferTies(a.ties, *v);
+      tied.assign(static_cast<std::size_t>(a.du.size()), 0);
+      for (const NodeTie& tie : a.ties) tied[2 * static_cast<std::size_t>(tie.node)] = tied[2 * static_cast<std::size_t>(tie.node) + 1] = 1;
+    }
+    for (Eigen::Index k = 0; k < a.du.size(); ++k) {
+      if (a.du[k] == 0.0 || (!tied.empty() && tied[static_cast<std::size_t>(k)])) continue;
+      const bool held = geometry_.dofs.unknownOf[static_cast<std::size_t>(k)] == DofMap::kPrescribed;
+      external += 0.5 * (held ? startForce[k] + endForce[k] : loadStart[k] + load[k]) * a.du[k];
+    }
   }
   // The platens: where they went (the prescribed increments, and the rest fitted to their nodes'
   // increments, which move rigidly), what they put on the specimen (sum_k B_k^T (f_int - f_ext)

@@ -13,7 +13,7 @@
 
 #include "mpm/implicit/implicit_system.hpp"
 #include "mpm/implicit/linear_solver.hpp"
-#include "mpm/implicit/platen_reduction.hpp"
+#include "mpm/implicit/unknown_reduction.hpp"
 
 namespace ecm::mpm {
 
@@ -131,11 +131,13 @@ class ImplicitSolver {
 
   LinearSolver lu_;
   long luPattern_ = -1;    // factorKey() of the factorised tangent (-1: none)
-  // The unknowns a factorisation is of: the geometry's pattern, and which platen degrees of
-  // freedom are prescribed (a platen free until some time changes them without a new pattern).
+  // The unknowns a factorisation is of: the geometry's pattern, which platen degrees of freedom
+  // are prescribed (a platen free until some time changes them without a new pattern), and which
+  // nodes are tied (mpm/implicit/node_ties.hpp): a change of either is a new reduction layout.
   std::vector<std::array<bool, 3>> platenLayout_;
-  long platenLayouts_ = 0;
-  long factorKey() const { return geometry_.patternBuilds + (platenLayouts_ << 32); }
+  std::vector<NodeTie> tieLayout_;
+  long reductionLayouts_ = 0;
+  long factorKey() const { return geometry_.patternBuilds + (reductionLayouts_ << 32); }
   Eigen::SparseMatrix<double> factored_;  // that tangent (a checkpoint stores it)
   StepGeometry geometry_;  // of the committed state after `geometryStep_` steps (-1: none)
   long geometryStep_ = -1;

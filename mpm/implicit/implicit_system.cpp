@@ -162,6 +162,15 @@ bool stepGeometry(const StepSetup& setup, const Particles& p, const std::vector<
   std::vector<std::uint8_t> reached = reachedComponents(grid, support, g.stencils, false);
   samePattern = samePattern && reached == g.reached;
   if (!samePattern) buildPattern(grid, support, p.size(), prescribed, std::move(reached), g);
+  // Each node's share of the body, in cells.
+  g.share.assign(static_cast<std::size_t>(grid.nodeCount()), 0.0);
+  const double cell = grid.cellArea() * setup.scene.thickness;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Stencil& s = g.stencils[i];
+    for (int j = 0; j < support; ++j)
+      for (int k = 0; k < support; ++k)
+        g.share[static_cast<std::size_t>(s.base + j * nx + k)] += s.wx[k] * s.wy[j] * p.volume[i] / cell;
+  }
   // K's elastic part, over the points undamaged at the step's start.
   const int local = 2 * g.stencilNodes;
   g.undamaged.resize(p.size());

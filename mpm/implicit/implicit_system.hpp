@@ -36,6 +36,7 @@ struct StepGeometry {
   std::vector<Stencil> stencils;            // per particle
   std::vector<std::uint8_t> prescribed;     // per node component, as given
   std::vector<std::uint8_t> reached;        // per node component: some stencil gives it a weight or gradient (not exactly 0)
+  std::vector<double> share;                // per node: sum_p S_np V_p over a cell's volume (mpm/implicit/node_ties.hpp)
   DofMap dofs;
   Eigen::SparseMatrix<double> pattern;      // K's pattern (column major, compressed), values 0
   int stencilNodes = 4;                     // S x S nodes per stencil

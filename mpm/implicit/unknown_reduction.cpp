@@ -1,22 +1,26 @@
-// The platens' change of unknowns (mpm/implicit/platen_reduction.hpp).
-#include "mpm/implicit/platen_reduction.hpp"
+// The step's change of unknowns: platens and tied nodes (mpm/implicit/unknown_reduction.hpp).
+#include "mpm/implicit/unknown_reduction.hpp"
 
 namespace ecm::mpm {
 
-PlatenReduction platenReduction(const Scene& scene, const std::vector<PlatenState>& platens, const DofMap& dofs,
-                                const std::vector<std::array<bool, 3>>& prescribed) {
+UnknownReduction unknownReduction(const Scene& scene, const std::vector<PlatenState>& platens, const DofMap& dofs,
+                                  const std::vector<std::array<bool, 3>>& prescribed, const std::vector<NodeTie>& ties) {
   const Grid& grid = scene.grid;
   const int n = dofs.unknowns();
   // The platen of each node (-1: none).
   std::vector<int> owner(static_cast<std::size_t>(grid.nodeCount()), -1);
   for (std::size_t p = 0; p < platens.size(); ++p)
     for (const std::int32_t node : platens[p].nodes) owner[static_cast<std::size_t>(node)] = static_cast<int>(p);
-  // Columns: the unknowns of no platen in their order, then each platen's unprescribed degrees of freedom.
-  PlatenReduction r;
+  std::vector<std::uint8_t> tied(static_cast<std::size_t>(grid.nodeCount()), 0);
+  for (const NodeTie& t : ties) tied[static_cast<std::size_t>(t.node)] = 1;
+  // Columns: the unknowns of no platen and no tie in their order, then each platen's unprescribed degrees of freedom.
+  UnknownReduction r;
   std::vector<int> plainColumn(static_cast<std::size_t>(n), -1);
   int m = 0;
-  for (int u = 0; u < n; ++u)
-    if (owner[static_cast<std::size_t>(dofs.component[static_cast<std::size_t>(u)] / 2)] < 0) plainColumn[static_cast<std::size_t>(u)] = m++;
+  for (int u = 0; u < n; ++u) {
+    const auto node = static_cast<std::size_t>(dofs.component[static_cast<std::size_t>(u)] / 2);
+    if (owner[node] < 0 && !tied[node]) plainColumn[static_cast<std::size_t>(u)] = m++;
+  }
   r.column.assign(platens.size(), {-1, -1, -1});
   for (std::size_t p = 0; p < platens.size(); ++p)
     for (int d = 0; d < 3; ++d)
@@ -27,6 +31,7 @@ PlatenReduction platenReduction(const Scene& scene, const std::vector<PlatenStat
     const std::int32_t component = dofs.component[static_cast<std::size_t>(u)];
     const std::int32_t node = component / 2;
     const int p = owner[static_cast<std::size_t>(node)];
+    if (tied[static_cast<std::size_t>(node)]) continue;  // below
     if (p < 0) {
       triplets.emplace_back(u, plainColumn[static_cast<std::size_t>(u)], 1.0);
       continue;
@@ -37,6 +42,16 @@ PlatenReduction platenReduction(const Scene& scene, const std::vector<PlatenStat
       if (column >= 0 && b(component % 2, d) != 0.0) triplets.emplace_back(u, column, b(component % 2, d));
     }
   }
+  // A tied component: its sources' columns (a prescribed source has none: its share is an increment).
+  for (const NodeTie& t : ties)
+    for (int d = 0; d < 2; ++d) {
+      const std::int32_t u = dofs.unknownOf[2 * static_cast<std::size_t>(t.node) + static_cast<std::size_t>(d)];
+      if (u < 0) continue;
+      for (int k = 0; k < t.sources; ++k) {
+        const std::int32_t s = dofs.unknownOf[2 * static_cast<std::size_t>(t.source[static_cast<std::size_t>(k)]) + static_cast<std::size_t>(d)];
+        if (s >= 0) triplets.emplace_back(u, plainColumn[static_cast<std::size_t>(s)], t.coefficient[static_cast<std::size_t>(k)]);
+      }
+    }
   r.t.resize(n, m);
   r.t.setFromTriplets(triplets.begin(), triplets.end());
   r.t.makeCompressed();
@@ -44,7 +59,7 @@ PlatenReduction platenReduction(const Scene& scene, const std::vector<PlatenStat
   return r;
 }
 
-Eigen::SparseMatrix<double> reduceTangent(const PlatenReduction& r, const Eigen::SparseMatrix<double>& k) {
+Eigen::SparseMatrix<double> reduceTangent(const UnknownReduction& r, const Eigen::SparseMatrix<double>& k) {
   Eigen::SparseMatrix<double> kt = k * r.t;
   Eigen::SparseMatrix<double> reduced = r.tt * kt;
   reduced.makeCompressed();
