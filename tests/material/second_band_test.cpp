@@ -396,6 +396,52 @@ TEST(SecondBand, ASecondBandNextToANearlyFailedFirstBandIsReleasedWithTheFirstUn
   EXPECT_FALSE(again.released);
 }
 
+// Two failed bands (integrities ~1e-18) leave the bulk no stiffness the jumps can tell apart: the
+// band tractions vanish, so the four jumps enter Eq. (6) only through the bulk strain's three
+// components, and the sliding of one band against the other is free (the Jacobian's smallest
+// singular value is ~1e-18 of its largest). A state from the fine L-panel with the second band
+// (docs/validation.md), logged where the run stopped: its update must converge, carry almost no
+// stress (both planes are free: sigma . n1 = sigma . n2 = 0, which in the plane is sigma = 0) and
+// leave the jumps where they are but for the bulk strain's increment.
+TEST(SecondBand, TwoFailedBandsTakeAnIncrementWithoutDriftingAlongTheirFreeSliding) {
+  MaterialParams params;
+  params.model = ModelKind::Enriched;
+  params.elastic = {25850.0, 0.18, Hypothesis::PlaneStress};
+  params.tensileStrength = 2.7;
+  params.softeningModulus = 56.997193986047456;
+  params.softeningExponent = 0.28262042959628364;
+  params.bandWidth = 0.05;
+  params.secondBand = SecondBandOption::Orthogonal;
+  const Material m(params);
+  MaterialPoint p;
+  p.strain = Voigt(-0.0011889342149273385, 0.0012405322354986656, -0.00090769622098186328);
+  BandState first, second;
+  first.crackNormal = Vec2(0.59450660107213571, 0.80409072950859006);
+  first.jump = Vec2(-555.20708555061162, 410.49365671127714);
+  first.onsetStrain = Voigt(5.6635118278438478e-05, 7.0860203611170536e-05, 4.6397601047651553e-05);
+  first.integrity = 9.6329673027461276e-19;
+  first.volumeFraction = 0.02;
+  second.crackNormal = Vec2(0.80409072950859006, -0.59450660107213571);
+  second.jump = Vec2(410.49012504316931, 555.20166070028813);
+  second.onsetStrain = Voigt(-3.8949340818611894e-05, 0.00012232984994927951, -0.00018177162710343188);
+  second.integrity = 9.6332595766374875e-19;
+  second.volumeFraction = 0.02;
+  p.band = first, p.secondBand = second;
+  const Voigt increment(-1.4896172919999832e-06, 9.7417848677287167e-06, -1.1566194187755703e-05);
+  const auto size = EffectiveSize::fixed(0.05 / 0.02);
+  for (const SnapBackPolicy policy : {SnapBackPolicy::Release, SnapBackPolicy::Stop}) {
+    MaterialPoint q = p;
+    const UpdateResult r = m.update(q, increment, size, UpdateOptions(policy));
+    ASSERT_TRUE(r.converged()) << toString(r.status) << ", residual " << r.residual;
+    EXPECT_LT(r.stress.norm(), 1e-9 * params.tensileStrength);
+    EXPECT_TRUE(r.tangent.allFinite());
+    // The jumps move by what the increment asks of them: |d eps| H / f at most, not by the
+    // free sliding (in the run they had drifted to 555 mm).
+    const double moved = (q.band->jump - first.jump).norm() + (q.secondBand->jump - second.jump).norm();
+    EXPECT_LT(moved, 10.0 * increment.norm() * 2.5) << "the jumps drifted by " << moved << " mm";
+  }
+}
+
 TEST(SecondBand, RefusesAnEffectiveSizeWithoutRoomForTwoBands) {
   const Material m(concrete(SecondBandOption::Orthogonal));
   MaterialPoint p;
