@@ -5,12 +5,12 @@
 # law's shape from Hordijk's curve; nothing fitted to the structural curves.
 # Run after the build (cmake -S . -B build -G Ninja && ninja -C build).
 # Usage: scripts/validate.sh [OUT_DIR] [WHAT...]   (default: results/validation quick)
-#   WHAT: quick     the coarse meshes: DEN explicit and implicit, L-panel explicit (one and two
-#                   bands) and implicit,
-#                   and the DEN's gap accounting (today's scene, the rig with the paper's law, the
-#                   second band), about 5 minutes on 2 threads
-#         medium    the medium meshes (DEN and L-panel, explicit and implicit), about an hour
-#         fine      the fine meshes (explicit; the L-panel with one and two bands), ~2-3 hours
+#   WHAT: quick     the coarse meshes: DEN explicit and implicit, L-panel explicit and implicit
+#                   (one and two bands), and the DEN's gap accounting (today's scene, the rig with
+#                   the paper's law, the second band), about 6 minutes on 2 threads
+#         medium    the medium meshes (DEN and L-panel, explicit and implicit, one and two bands),
+#                   about 1.5 hours (the implicit DEN alone took 69 minutes on one shared thread)
+#         fine      the fine meshes (explicit, one and two bands), about 1.5 hours
 #         all       quick medium fine
 #         RUN       one run by name (see `runs` below)
 #         report    no run: the tables and plots of what is in OUT_DIR
