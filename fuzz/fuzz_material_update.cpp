@@ -29,10 +29,12 @@ void require(bool ok, const char* what, const ecm::MaterialParams& p, double big
   if (ok) return;
   std::fprintf(stderr,
                "contract broken: %s at step %d (model %s, E %g, nu %g, ft %g, Ep %g, n %g, h %g, H %g; status %s, "
-               "dissipation %g, stress %g %g %g, total strain %.17g %.17g %.17g)\n",
+               "dissipation %g, stress %g %g %g, total strain %.17g %.17g %.17g; tangent %g %g %g / %g %g %g / %g %g %g)\n",
                what, step, ecm::toString(p.model), p.elastic.youngsModulus, p.elastic.poissonRatio, p.tensileStrength,
                p.softeningModulus, p.softeningExponent, p.bandWidth, bigH, ecm::toString(r.status), r.dissipation,
-               r.stress[0], r.stress[1], r.stress[2], strain[0], strain[1], strain[2]);
+               r.stress[0], r.stress[1], r.stress[2], strain[0], strain[1], strain[2], r.tangent(0, 0), r.tangent(0, 1),
+               r.tangent(0, 2), r.tangent(1, 0), r.tangent(1, 1), r.tangent(1, 2), r.tangent(2, 0), r.tangent(2, 1),
+               r.tangent(2, 2));
   std::abort();
 }
 

@@ -37,11 +37,14 @@ constexpr double kFreeSlidingRank = 1e-10;
 // Newton's LU steps then amplify round-off along that sliding without bound (jumps of hundreds of
 // mm). Such a K is solved for the least-norm step, which leaves the sliding where it is, and the
 // residual is measured over K's range (docs/model.md, "Two failed bands").
+// The same holds where the bands have not failed by the traction criterion yet but K is singular
+// to that fraction all the same (jumps so large that an integrity of 1e-11 still carries
+// traction): LU's reciprocal condition estimate flags those, and the SVD decides.
 struct FreeSliding {
   bool active = false;
   Eigen::JacobiSVD<Mat4> svd;
   FreeSliding(const Mat4& k, bool bothFailed) {
-    if (!bothFailed) return;
+    if (!bothFailed && !(k.partialPivLu().rcond() < kFreeSlidingRank)) return;
     svd.compute(k, Eigen::ComputeFullU | Eigen::ComputeFullV);
     const auto& sigma = svd.singularValues();
     active = sigma[3] < kFreeSlidingRank * sigma[0];
