@@ -4,13 +4,13 @@
 // Eq. (6), holds on both bands. The one-band update (two_phase_point.cpp) is untouched: a point
 // pays for this file only once it has two bands, or while the option looks for the trigger.
 #include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
 
 #include "material/driving_force.hpp"
+#include "material/free_sliding.hpp"
 #include "material/two_phase_point.hpp"
 
 namespace ecm {
@@ -27,46 +27,6 @@ double smallestRealPart(const Mat4& k) { return Eigen::EigenSolver<Mat4>(k, fals
 
 // The band's damage frozen at x: the law stays elastic with a_L = x a (a secant evaluation).
 Surface frozenAt(double x) { return {x, kInfinity}; }
-
-// Singular values below this fraction of K's largest count as zero.
-constexpr double kFreeSlidingRank = 1e-10;
-
-// Where both bands have failed, their tractions vanish and the jumps enter Eq. (6) only through
-// the bulk strain's three components: the sliding of one band against the other is free, and K's
-// smallest singular value is the bands' integrity (~1e-18 of the rest in the runs that met it).
-// Newton's LU steps then amplify round-off along that sliding without bound (jumps of hundreds of
-// mm). Such a K is solved for the least-norm step, which leaves the sliding where it is, and the
-// residual is measured over K's range (docs/model.md, "Two failed bands").
-// The same holds where the bands have not failed by the traction criterion yet but K is singular
-// to that fraction all the same (jumps so large that an integrity of 1e-11 still carries
-// traction): LU's reciprocal condition estimate flags those, and the SVD decides.
-struct FreeSliding {
-  bool active = false;
-  Eigen::JacobiSVD<Mat4> svd;
-  FreeSliding(const Mat4& k, bool bothFailed) {
-    if (!bothFailed && !(k.partialPivLu().rcond() < kFreeSlidingRank)) return;
-    svd.compute(k, Eigen::ComputeFullU | Eigen::ComputeFullV);
-    const auto& sigma = svd.singularValues();
-    active = sigma[3] < kFreeSlidingRank * sigma[0];
-    svd.setThreshold(kFreeSlidingRank);
-  }
-  // |r| over K's range (the residual along the free sliding is a combination of the bands'
-  // tractions alone, which have vanished; Newton cannot move it).
-  double rangeNorm(const Vec4& r) const {
-    const Vec4 projected = svd.matrixU().transpose() * r;
-    double sum = 0.0;
-    for (Eigen::Index i = 0; i < svd.rank(); ++i) sum += projected[i] * projected[i];
-    return std::sqrt(sum);
-  }
-};
-
-// K^-1 b, or the least-norm solution where the sliding is free.
-template <int Cols>
-Eigen::Matrix<double, 4, Cols> solveJumps(const Mat4& k, const Eigen::Matrix<double, 4, Cols>& b, bool bothFailed) {
-  const FreeSliding free(k, bothFailed);
-  if (!free.active) return k.partialPivLu().solve(b);
-  return free.svd.solve(b);
-}
 
 }  // namespace
 
