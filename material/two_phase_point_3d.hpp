@@ -56,13 +56,11 @@ class TwoPhasePoint3D {
   // (Inline: the elastic case is the common one.)
   UpdateResult3 updateIntact(Voigt6& strain, const Voigt6& strainIncrement, const EffectiveSize3& size,
                              std::optional<BandState3>& onset, UpdateOptions options = {}) const {
-    UpdateResult3 r;
-    r.stress.noalias() = stiffness_ * (strain + strainIncrement);
-    const Voigt6& s = r.stress;
+    const Voigt6 end = strain + strainIncrement;
+    const Voigt6 s = stiffness_ * end;
     if (onsetBound_ * (s.head<3>().squaredNorm() + 2.0 * s.tail<3>().squaredNorm()) < law_.onsetDrivingForce()) {
-      strain += strainIncrement;  // surely intact: Y <= onsetBound_ |sigma|^2 < F(0)
-      r.tangent = stiffness_;
-      return r;
+      strain = end;  // surely intact: Y <= onsetBound_ |sigma|^2 < F(0)
+      return {s, stiffness_};  // (the tangent written once, not zeroed first)
     }
     return updateIntactSlow(strain, strainIncrement, size, onset, options);
   }
