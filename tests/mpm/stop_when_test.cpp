@@ -19,7 +19,7 @@ using ecm::test::readFile;
 using ecm::test::TempDir;
 
 TEST(StopWatch, FiresBelowTheFractionOfThePeakOnlyFromAfterTime) {
-  const StopWhen when{"top", 0.1, 1.0};
+  const StopWhen when{"top", 0.1, 1.0, {}, 0.0};
   StopWatch w;
   EXPECT_FALSE(w.observe(when, 0.0, 0.0));    // no peak yet: 0 < 0.1 x 0 is no stop
   EXPECT_FALSE(w.observe(when, 0.2, -50.0));  // the magnitude counts (a reaction may be negative)
@@ -37,7 +37,7 @@ Scene softeningBlock() {
   Scene s = notchedCrackingBlock();
   s.endTime = 2e-3;  // far past what the block needs: the stop must end it
   s.outputInterval = 1e-5;
-  s.stopWhen = StopWhen{"top", 0.5, 2e-5};
+  s.stopWhen = StopWhen{"top", 0.5, 2e-5, {}, 0.0};
   return s;
 }
 
