@@ -144,6 +144,10 @@ class ImplicitStepper final : public Stepper {
     j["factorizations"] = book_.factorizations;
     j["linear_solve_s"] = book_.linearSolveSeconds;
     j["linear_solver"] = toString(settings_.linearSolver);
+    if (const AmgStatistics* amg = solver_.linearSolver().amgStatistics())
+      j["amg"] = {{"hierarchies", amg->setups},         {"solves", amg->solves},
+                  {"gmres_iterations", amg->iterations}, {"failed_solves", amg->failedSolves},
+                  {"setup_s", amg->setupSeconds},        {"solve_s", amg->solveSeconds}};
     j["snap_back_releases"] = book_.released;
     j["relaxed_steps"] = book_.relaxed;  // kept with a residual between tolerance and accept_tolerance
     j["cracked_particles"] = cracked();

@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config libeigen3-dev libgsl-dev libyaml-cpp-dev
           libgtest-dev googletest libbenchmark-dev gnuplot-nox libcli11-dev nlohmann-json3-dev libsuitesparse-dev libopenblas0-serial
           python3 python3-dev pybind11-dev python3-numpy python3-pytest python3-matplotlib time
-          python3-dask python3-distributed)
+          python3-dask python3-distributed libhypre-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -330,6 +330,7 @@ void ImplicitSolver::restore(const SavedState& s) {
                            std::equal(k.outerIndexPtr(), k.outerIndexPtr() + k.cols() + 1, pattern.outerIndexPtr()) &&
                            std::equal(k.innerIndexPtr(), k.innerIndexPtr() + k.nonZeros(), pattern.innerIndexPtr());
   if (!samePattern) throw std::invalid_argument("its factorised tangent does not fit its step geometry");
+  if (settings_.linearSolver == LinearSolverKind::Amg) lu_.setComponents(unknownComponents(geometry_.dofs, nullptr));
   if (!lu_.factorize(k)) throw std::invalid_argument("its factorised tangent is singular");
   factored_ = k;
   luPattern_ = factorKey();
@@ -344,7 +345,10 @@ Eigen::SparseMatrix<double> ImplicitSolver::tangentAtStart(double dt) {
 
 bool ImplicitSolver::factorize(const Eigen::SparseMatrix<double>& k, Attempt& a) {
   const double start = omp_get_wtime();
-  if (luPattern_ != factorKey()) lu_.forgetPattern();
+  if (luPattern_ != factorKey()) {
+    lu_.forgetPattern();
+    if (settings_.linearSolver == LinearSolverKind::Amg) lu_.setComponents(unknownComponents(geometry_.dofs, a.reduction ? &*a.reduction : nullptr));
+  }
   const bool ok = lu_.factorize(k);
   luPattern_ = ok ? factorKey() : -1;
   if (ok) factored_ = k;

@@ -64,6 +64,7 @@ class ImplicitSolver {
   ImplicitStepReport advance(double largest, double remaining);
   ImplicitStepReport advance(const IndirectControl& control, double largest, double remaining);
   double loadFactor() const { return lambda_; }
+  const LinearSolver& linearSolver() const { return lu_; }
   // The tangent over the unknowns of a step of dt from here, at du = 0 (for benchmarks of the
   // linear solvers); empty if a particle left the grid.
   Eigen::SparseMatrix<double> tangentAtStart(double dt);

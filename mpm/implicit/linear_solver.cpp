@@ -75,7 +75,37 @@ struct UmfpackFactors {};
 LinearSolver::LinearSolver(LinearSolverKind kind) : kind_(kind) {}
 LinearSolver::~LinearSolver() = default;
 
+void LinearSolver::forgetPattern() {
+  analysed_ = false;
+#ifdef ECM_HAVE_HYPRE
+  if (amg_) amg_->forget();
+#endif
+}
+
+const AmgStatistics* LinearSolver::amgStatistics() const {
+#ifdef ECM_HAVE_HYPRE
+  if (amg_) return &amg_->statistics();
+#endif
+  return nullptr;
+}
+
+void LinearSolver::setComponents([[maybe_unused]] std::vector<int> components) {
+#ifdef ECM_HAVE_HYPRE
+  if (kind_ == LinearSolverKind::Amg) {
+    if (!amg_) amg_ = std::make_unique<AmgSolver>();
+    amg_->setComponents(std::move(components));
+  }
+#endif
+}
+
 bool LinearSolver::factorize(const Eigen::SparseMatrix<double>& k) {
+#ifdef ECM_HAVE_HYPRE
+  if (kind_ == LinearSolverKind::Amg) {
+    if (!amg_) amg_ = std::make_unique<AmgSolver>();
+    amg_->setMatrix(k);
+    return true;
+  }
+#endif
 #ifdef ECM_HAVE_UMFPACK
   if (kind_ == LinearSolverKind::Umfpack) {
     if (!umfpack_) umfpack_ = std::make_unique<UmfpackFactors>();  // loads the library at the first use
@@ -92,6 +122,13 @@ bool LinearSolver::factorize(const Eigen::SparseMatrix<double>& k) {
 }
 
 Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) {
+#ifdef ECM_HAVE_HYPRE
+  if (kind_ == LinearSolverKind::Amg) {
+    Eigen::VectorXd x;
+    amg_->solve(b, x);  // where GMRES fell short, Newton's residual says so
+    return x;
+  }
+#endif
 #ifdef ECM_HAVE_UMFPACK
   if (kind_ == LinearSolverKind::Umfpack) return umfpack_->solve(b);
 #endif

@@ -1,6 +1,8 @@
 #pragma once
-// The sparse direct solver of the implicit steps (docs/implicit.md): the tangent is not
-// symmetric once bands soften, so an LU. UMFPACK (SuiteSparse) when the build found it, Eigen's
+// The sparse solver of the implicit steps (docs/implicit.md): the tangent is not symmetric once
+// bands soften, so an LU, or GMRES preconditioned by algebraic multigrid (AmgSolver, where the
+// build has hypre; "factorising" then hands it the tangent, and it decides when to rebuild its
+// hierarchy). UMFPACK (SuiteSparse) when the build found it, Eigen's
 // SparseLU otherwise; both analyse a pattern once (it is kept while the particles' stencils stay
 // on the same nodes) and factorise when the Newton iteration asks. UMFPACK's shared library (and
 // the BLAS, LAPACK and Fortran run-time it needs, some 3.5 MB resident) is loaded at its first
@@ -8,8 +10,10 @@
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <memory>
+#include <vector>
 
 #include "mpm/scene/solver_settings.hpp"
+#include "mpm/implicit/amg_solver.hpp"
 
 namespace ecm::mpm {
 
@@ -24,14 +28,21 @@ class LinearSolver {
   // Factorises K (its pattern analysed at the first call, and after forgetPattern()); false if K is singular.
   bool factorize(const Eigen::SparseMatrix<double>& k);
   // The next K has another pattern.
-  void forgetPattern() { analysed_ = false; }
+  void forgetPattern();
+  // Each unknown's displacement component (0 x, 1 y), for the AMG solver; the LUs do not need it.
+  void setComponents(std::vector<int> components);
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
+  // The AMG solver's counts (linear_solver: amg), null for the LUs.
+  const AmgStatistics* amgStatistics() const;
 
  private:
   LinearSolverKind kind_;
   bool analysed_ = false;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
   std::unique_ptr<UmfpackFactors> umfpack_;
+#ifdef ECM_HAVE_HYPRE
+  std::unique_ptr<AmgSolver> amg_;
+#endif
 };
 
 }  // namespace ecm::mpm

@@ -66,4 +66,19 @@ Eigen::SparseMatrix<double> reduceTangent(const UnknownReduction& r, const Eigen
   return reduced;
 }
 
+std::vector<int> unknownComponents(const DofMap& dofs, const UnknownReduction* r) {
+  std::vector<int> xy;
+  if (!r) {
+    xy.reserve(dofs.component.size());
+    for (const std::int32_t c : dofs.component) xy.push_back(c % 2);
+    return xy;
+  }
+  xy.assign(static_cast<std::size_t>(r->reduced()), 0);
+  for (int j = 0; j < r->reduced(); ++j) {
+    Eigen::SparseMatrix<double>::InnerIterator it(r->t, j);
+    if (it) xy[static_cast<std::size_t>(j)] = dofs.component[static_cast<std::size_t>(it.row())] % 2;
+  }
+  return xy;
+}
+
 }  // namespace ecm::mpm

@@ -47,6 +47,10 @@ inline Eigen::VectorXd toUnknowns(const UnknownReduction* r, const Eigen::Vector
   return r->t * x;
 }
 
+// Each (reduced) unknown's displacement component, 0 x or 1 y: that of the first node component
+// its column of T moves (a platen's rotation counts as x). For the AMG solver.
+std::vector<int> unknownComponents(const DofMap& dofs, const UnknownReduction* r);
+
 // T^T K T (K over the unknowns).
 Eigen::SparseMatrix<double> reduceTangent(const UnknownReduction& r, const Eigen::SparseMatrix<double>& k);
 

@@ -85,7 +85,9 @@ void validateImplicit(const Scene& s) {
   requireRange("solver.onset_overshoot", im.onsetOvershoot, 0.0, 1.0, false, true);
   requireRange("solver.accept_tolerance", im.acceptTolerance, im.tolerance, 1e-2, true, true);
   if (!available(im.linearSolver))
-    throw ValueError("solver.linear_solver", "this build has no UMFPACK (libsuitesparse-dev); use sparselu");
+    throw ValueError("solver.linear_solver", im.linearSolver == LinearSolverKind::Amg
+                                                 ? "this build has no hypre (libhypre-dev); use umfpack or sparselu"
+                                                 : "this build has no UMFPACK (libsuitesparse-dev); use sparselu");
   if (!im.indirect) {
     requireRange("solver.load_step", im.loadStep, 0.0, s.endTime, false, true);
     return;

@@ -95,9 +95,12 @@ ImplicitSettings readImplicitSettings(const YamlMap& m) {
   im.maxHalvings = m.getOr<int>("max_halvings", im.maxHalvings);
   im.onsetOvershoot = m.getOr<double>("onset_overshoot", im.onsetOvershoot);
   im.acceptTolerance = m.getOr<double>("accept_tolerance", std::max(im.acceptTolerance, im.tolerance));
-  im.linearSolver = m.getEnumOr("linear_solver", {"umfpack", "sparselu"}, toString(im.linearSolver)) == "umfpack"
-                        ? LinearSolverKind::Umfpack
-                        : LinearSolverKind::SparseLU;
+  {
+    const std::string solver = m.getEnumOr("linear_solver", {"umfpack", "sparselu", "amg"}, toString(im.linearSolver));
+    im.linearSolver = solver == "umfpack" ? LinearSolverKind::Umfpack
+                      : solver == "amg"   ? LinearSolverKind::Amg
+                                          : LinearSolverKind::SparseLU;
+  }
   if (m.has("control")) {
     const YamlMap c = m.child("control");
     const YamlMap i = c.child("indirect");

@@ -45,7 +45,7 @@
 //     snap_back: release        # release | stop: an enriched point with no stable branch fails
 //                               # onto its stable branch (counted in summary.json) or stops the run
 //   (or, implicit: solver: {scheme: implicit_static, tolerance: 1e-6, max_iterations: 25,
-//    max_halvings: 8, onset_overshoot: 0.05, accept_tolerance: 1e-4, linear_solver: umfpack,
+//    max_halvings: 8, onset_overshoot: 0.05, accept_tolerance: 1e-4, linear_solver: umfpack,  # | sparselu | amg
 //    load_step: S | control: {indirect: {driven: [..], reference: [x, y],
 //    opening: [{node: [x, y], component: y, coefficient: 1}, ..], step: MM, until: MM, from: S}}};
 //    shape_function, effective_size, gravity, substep_levels and snap_back as above; no flip,

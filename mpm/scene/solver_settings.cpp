@@ -12,14 +12,26 @@ const char* toString(UpdateScheme s) {
   return "?";
 }
 
-const char* toString(LinearSolverKind k) { return k == LinearSolverKind::Umfpack ? "umfpack" : "sparselu"; }
+const char* toString(LinearSolverKind k) {
+  switch (k) {
+    case LinearSolverKind::SparseLU: return "sparselu";
+    case LinearSolverKind::Umfpack: return "umfpack";
+    case LinearSolverKind::Amg: return "amg";
+  }
+  return "?";
+}
 
-bool available([[maybe_unused]] LinearSolverKind k) {
+bool available(LinearSolverKind k) {
+  switch (k) {
+    case LinearSolverKind::SparseLU: return true;
 #ifdef ECM_HAVE_UMFPACK
-  return true;
-#else
-  return k == LinearSolverKind::SparseLU;
+    case LinearSolverKind::Umfpack: return true;
 #endif
+#ifdef ECM_HAVE_HYPRE
+    case LinearSolverKind::Amg: return true;
+#endif
+    default: return false;
+  }
 }
 
 }  // namespace ecm::mpm

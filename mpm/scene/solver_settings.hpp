@@ -33,7 +33,7 @@ struct ExplicitSettings {
 
 // The sparse LU of the implicit steps (docs/implicit.md): UMFPACK when the build has it (found at
 // build time, loaded at the first factorisation), Eigen's SparseLU otherwise.
-enum class LinearSolverKind { SparseLU, Umfpack };
+enum class LinearSolverKind { SparseLU, Umfpack, Amg };
 const char* toString(LinearSolverKind k);
 bool available(LinearSolverKind k);
 inline LinearSolverKind defaultLinearSolver() {

@@ -55,6 +55,32 @@ TEST(LinearSolver, EachSolverSolvesASmallUnsymmetricSystemAndRefusesASingularOne
   }
 }
 
+// GMRES with BoomerAMG (docs/implicit.md, "The AMG solver"): the same small system to its
+// tolerance (1e-8 relative residual; this matrix's condition number is below 10, so the error is
+// below 1e-7), with and without the unknowns' components, and again after new values (the
+// hierarchy kept). It has no factorisation to fail: a singular K shows as GMRES not converging.
+TEST(LinearSolver, AmgSolvesASmallUnsymmetricSystemToItsTolerance) {
+  if (!available(LinearSolverKind::Amg)) GTEST_SKIP() << "this build has no hypre (libhypre-dev)";
+  for (const bool components : {false, true}) {
+    LinearSolver amg(LinearSolverKind::Amg);
+    if (components) {
+      std::vector<int> xy(12);
+      for (int i = 0; i < 12; ++i) xy[static_cast<std::size_t>(i)] = i % 2;
+      amg.setComponents(xy);
+    }
+    const Eigen::SparseMatrix<double> k = tridiagonal(12, 5.0);
+    const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(12, -1.0, 2.0);
+    ASSERT_TRUE(amg.factorize(k));
+    EXPECT_LT((amg.solve(k * x) - x).norm(), 1e-7 * x.norm());
+    const Eigen::SparseMatrix<double> k2 = tridiagonal(12, 9.0);
+    ASSERT_TRUE(amg.factorize(k2));
+    EXPECT_LT((amg.solve(k2 * x) - x).norm(), 1e-7 * x.norm());
+    ASSERT_NE(amg.amgStatistics(), nullptr);
+    EXPECT_EQ(amg.amgStatistics()->solves, 2);
+    EXPECT_EQ(amg.amgStatistics()->failedSolves, 0);
+  }
+}
+
 TEST(LinearSolver, UmfpackIsLoadedAtItsFirstFactorisationNotByAnExplicitRun) {
   if (!available(LinearSolverKind::Umfpack)) GTEST_SKIP() << "this build has no UMFPACK";
   if (umfpackLoaded()) GTEST_SKIP() << "an earlier test of this process loaded it (ctest runs each test alone)";
