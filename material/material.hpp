@@ -82,15 +82,25 @@ class Material {
   // The same on a MaterialPoint (its bands stored in place).
   UpdateResult update(MaterialPoint& point, const Voigt& strainIncrement, const EffectiveSize& size,
                       const UpdateOptions& options = {}) const;
+  // Whether a point's stress is a : strain (Eq. (4) with no band): an elastic point, and an intact
+  // enriched point, whichever update gave it (update() ends an intact increment with the same
+  // product). Not a smeared-crack point (its integrity scales it) nor a cracked one. The explicit
+  // MPM relies on it to store such stresses only when they are read (docs/model.md, "An intact
+  // point's stress").
+  bool stressFollowsStrain(bool cracked) const {
+    return params_.model == ModelKind::LinearElastic || (params_.model == ModelKind::Enriched && !cracked);
+  }
+  // That stress, a : strain.
+  Voigt intactStress(const Voigt& strain) const { return stiffness_ * strain; }
   // The closed-form stress, where there is one: an elastic point, or an intact enriched point
   // that does not reach onset in this increment (TwoPhasePoint::staysIntact), with a finite
   // stress. Then strain and stress are updated and it returns true; otherwise nothing changes
   // (the caller takes update()).
   // Inline: the explicit MPM calls it for nearly every point of every step.
   bool closedFormStress(const Voigt& increment, bool cracked, Voigt& strain, Voigt& stress) const {
-    if (params_.model == ModelKind::SmearedCrack || (params_.model == ModelKind::Enriched && cracked)) return false;
+    if (!stressFollowsStrain(cracked)) return false;
     const Voigt end = strain + increment;
-    const Voigt s = stiffness_ * end;  // Eq. (4) with no band
+    const Voigt s = intactStress(end);
     if (!s.allFinite() || (params_.model == ModelKind::Enriched && !std::get_if<TwoPhasePoint>(&model_)->staysIntact(s)))
       return false;
     strain = end;

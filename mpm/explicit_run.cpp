@@ -18,6 +18,7 @@ class ExplicitStepper final : public Stepper {
       : scene_(scene), solver_(scene, options.threads), nextOutput_(scene.outputInterval) {}
 
   const Particles& particles() const override { return solver_.particles(); }
+  const Particles& kinematics() const override { return solver_.kinematics(); }
   const std::vector<ConditionState>& conditions() const override { return solver_.conditions(); }
   const std::vector<PlatenState>& platens() const override { return solver_.platens(); }
   std::vector<Vec2> appliedLoads() const override {

@@ -161,7 +161,7 @@ class RunLoop {
   // --- platens (mpm/scene/platen.hpp) and gauges (mpm/scene/gauge.hpp): their columns after the solver's ---
   double gaugeReading(const std::string& name) const {
     for (std::size_t g = 0; g < scene_.gauges.size(); ++g)
-      if (scene_.gauges[g].name == name) return mpm::gaugeReading(scene_.gauges[g], gaugePoints_[g], stepper_.particles());
+      if (scene_.gauges[g].name == name) return mpm::gaugeReading(scene_.gauges[g], gaugePoints_[g], stepper_.kinematics());
     return 0.0;  // (validated: the name is a gauge's)
   }
   std::vector<std::string> historyColumns() const {
@@ -178,7 +178,7 @@ class RunLoop {
       row.insert(row.end(), p.force.data(), p.force.data() + 3);
     }
     for (std::size_t g = 0; g < scene_.gauges.size(); ++g)
-      row.push_back(mpm::gaugeReading(scene_.gauges[g], gaugePoints_[g], stepper_.particles()));
+      row.push_back(mpm::gaugeReading(scene_.gauges[g], gaugePoints_[g], stepper_.kinematics()));
     return row;
   }
 

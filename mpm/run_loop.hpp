@@ -23,6 +23,9 @@ class Stepper {
 
   // --- what the loop watches ---
   virtual const Particles& particles() const = 0;
+  // The same for readers of positions and displacements every step (the gauges), which need no
+  // stresses: the explicit solver stores its intact points' stresses only for particles().
+  virtual const Particles& kinematics() const { return particles(); }
   virtual const std::vector<ConditionState>& conditions() const = 0;
   virtual const std::vector<PlatenState>& platens() const = 0;
   virtual std::vector<Vec2> appliedLoads() const = 0;  // N, per scene load, now

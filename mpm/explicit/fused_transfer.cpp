@@ -52,7 +52,7 @@ struct PassArrays {
   const double* __restrict mass;
   const double* __restrict volume;
   Voigt* __restrict strain;
-  Voigt* __restrict stress;
+  Voigt* __restrict stress;  // written for the far points and those that left the grid only
   Voigt* __restrict strainIncrement;
   const std::uint8_t* __restrict material;
   const std::int32_t* __restrict band;
@@ -130,7 +130,6 @@ ChunkOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid,
       expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
       detail::scatterParticle<F, true, true>(s, nx, p.mass[i], p.velocity[i], p.volume[i], sig[k], gravity,
                                              withGravity, out);
-      p.stress[i] = sig[k];
     }
   }
   measured = span.rows(nx);

@@ -72,6 +72,10 @@ void gridToParticleAndRemap(const StepSetup& setup, const Clock& clock, GridFiel
 // particle indices) when it is given; adds the dissipation and the sub-step and release counts.
 void updateStresses(const StepSetup& setup, long step, Particles& particles, RunTotals& totals,
                     const std::vector<std::uint32_t>* only = nullptr);
+// Stores the stress of every point whose stress follows its strain (Material::stressFollowsStrain:
+// elastic, intact enriched) as a : strain, the product every update of such a point ends with:
+// bitwise what the fused pass computed and did not store.
+void storeStressesOfIntactPoints(const StepSetup& setup, Particles& particles);
 
 // The fused USL pass (fused_transfer.cpp): G2P, strain, closed-form stresses and the next step's
 // P2G in one sweep over the particles.
@@ -80,7 +84,8 @@ void updateStresses(const StepSetup& setup, long step, Particles& particles, Run
 void scatterState(const StepSetup& setup, long step, Particles& particles, GridFields& grid, ScatterOrder& order,
                   const FusedPass& fused);
 // G2P, strain, closed-form stresses and the next step's scatter in a planned `order`; the points without a closed
-// form go to fused.deferred. False when a stencil left the grid (the deferred points then do
+// form go to fused.deferred. The closed-form stresses are scattered, not stored (except a far
+// point's, which scatters later): storeStressesOfIntactPoints stores them. False when a stencil left the grid (the deferred points then do
 // not scatter; the next scatterState reports it).
 bool gatherStressScatter(const StepSetup& setup, const Clock& clock, GridFields& grid, Particles& particles,
                          ScatterOrder& order, FusedPass& fused);

@@ -28,8 +28,14 @@ const char* toString(StepPhase p) {
   return "?";
 }
 
+void Solver::storeIntactStresses() const {
+  if (!intactStressesUnstored_) return;
+  storeStressesOfIntactPoints(setup_, const_cast<Particles&>(state_.particles));
+  intactStressesUnstored_ = false;
+}
+
 Energies Solver::energies() const {
-  const Particles& p = state_.particles;
+  const Particles& p = particles();
   const Vec2 e = orderedSum(setup_.threads, static_cast<long>(p.size()), Vec2(Vec2::Zero()), [&](long i) {
     const auto k = static_cast<std::size_t>(i);
     return Vec2(0.5 * p.mass[k] * p.velocity[k].squaredNorm(), 0.5 * p.volume[k] * p.stress[k].dot(p.strain[k]));

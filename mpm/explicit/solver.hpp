@@ -45,8 +45,22 @@ class Solver {
   const std::vector<Material>& materials() const { return setup_.materials; }
   EffectiveSize effectiveSize() const { return setup_.size; }
   int threads() const { return setup_.threads; }
-  const MpmState& state() const { return state_; }
-  const Particles& particles() const { return state_.particles; }
+  // The state and the particles with every stress stored. The explicit passes leave the stress
+  // of an elastic or intact point (a : strain) unstored: 48 bytes of memory traffic less per
+  // point and step (docs/model.md, "An intact point's stress"); these accessors store them first,
+  // bitwise what the step computed. A reference kept across advance() sees the stresses as of
+  // the last call: call particles() again after stepping.
+  const MpmState& state() const {
+    storeIntactStresses();
+    return state_;
+  }
+  const Particles& particles() const {
+    storeIntactStresses();
+    return state_.particles;
+  }
+  // The particles as the last step left them, for readers of positions, velocities, strains and
+  // bands every step (the gauges): an intact point's `stress` may be unstored (particles() stores it).
+  const Particles& kinematics() const { return state_.particles; }
   const GridFields& grid() const { return state_.grid; }
   const std::vector<ConditionState>& conditions() const { return state_.conditions; }
   const std::vector<PlatenState>& platens() const { return state_.platens; }
@@ -66,6 +80,7 @@ class Solver {
   // step rebuilds the grid's scatter from the particles (rebuildGridNextStep) instead of using
   // the one the fused USL pass left.
   MpmState& editState() {
+    storeIntactStresses();
     rebuildGridNextStep();
     return state_;
   }
@@ -94,6 +109,12 @@ class Solver {
   // USF, MUSL: the points the strain pass left to updateStresses (step.cpp).
   std::vector<std::uint32_t> pending_;
   std::vector<std::vector<std::uint32_t>> pendingPerThread_;
+
+  // The fused pass has left intact points' stresses unstored since the last storeIntactStresses().
+  // Set by step.cpp only; a const accessor stores them (the Solver is never a const object once
+  // it has stepped, so the stores below write to a mutable object).
+  mutable bool intactStressesUnstored_ = false;
+  void storeIntactStresses() const;
 
   std::array<double, kStepPhases> phaseSeconds_{};
   void phases();  // the plain phase sequence of the scheme (step.cpp)

@@ -41,8 +41,10 @@ void Solver::advance() {
   GridFields& grid = st.grid;
   const Clock& clock = st.clock;
   if (s.scene.solver.explicitScheme.scheme == UpdateScheme::USL) {
-    if (!fused_.gridHoldsState)  // P2G of this step: first step, restart, state edited
+    if (!fused_.gridHoldsState) {  // P2G of this step: first step, restart, state edited
+      storeIntactStresses();      // (it scatters the stored stresses)
       timed(StepPhase::Rebuild, [&] { scatterState(s, clock.step, p, grid, st.order, fused_); });
+    }
     fused_.gridHoldsState = false;  // until the pass below has scattered every point anew
     timed(StepPhase::Grid, [&] {
       addLoads(s, clock.time, p, grid, st.loads);
@@ -50,6 +52,7 @@ void Solver::advance() {
       if (!st.platens.empty()) applyPlatens(s, clock, grid, st.platens, &st.totals, true);
     });
     bool inGrid = false;  // G2P, strain, closed-form stresses, the next step's P2G
+    intactStressesUnstored_ = true;  // the pass scatters the closed-form stresses without storing them
     timed(StepPhase::Fused, [&] { inGrid = gatherStressScatter(s, clock, grid, p, st.order, fused_); });
     timed(StepPhase::Stress, [&] { updateStresses(s, clock.step, p, st.totals, &fused_.deferred); });  // the deferred points
     if (inGrid) {  // (a stencil that left the grid is reported by the next step's scatterState)
@@ -76,6 +79,7 @@ void Solver::phases() {
   GridFields& grid = st.grid;
   const Clock& clock = st.clock;
   fused_.gridHoldsState = false;  // the plain phases leave no scatter for the next step
+  intactStressesUnstored_ = true; // their P2G computes a : strain, their strain pass stores none
   const auto p2g = [&](unsigned what) {
     timed(StepPhase::P2G, [&] { particleToGrid(s, clock.step, p, grid, st.order, what); });
     if (what & kForces) timed(StepPhase::Grid, [&] { addLoads(s, clock.time, p, grid, st.loads); });

@@ -29,6 +29,16 @@ struct Failure {
 
 }  // namespace
 
+void storeStressesOfIntactPoints(const StepSetup& setup, Particles& p) {
+  const auto n = static_cast<std::ptrdiff_t>(p.size());
+#pragma omp parallel for num_threads(setup.threads) schedule(static)
+  for (std::ptrdiff_t k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    const Material& m = setup.materials[p.material[i]];
+    if (m.stressFollowsStrain(p.band[i] >= 0)) p.stress[i] = m.intactStress(p.strain[i]);
+  }
+}
+
 void updateStresses(const StepSetup& setup, long step, Particles& p, RunTotals& totals,
                     const std::vector<std::uint32_t>* only) {
   const bool deferredOnly = only != nullptr;

@@ -80,6 +80,14 @@ inline void scatterParticle(const Stencil& s, int nx, const Particles& p, std::s
                                            withGravity, out);
 }
 
+// The stress particle i scatters: a : strain where its stress follows its strain (elastic,
+// intact enriched: the explicit passes do not store those, Material::stressFollowsStrain),
+// its stored stress otherwise. Bitwise the stress its last update computed.
+inline Voigt scatteredStress(const Particles& p, std::size_t i, const Material* materials) {
+  const Material& m = materials[p.material[i]];
+  return m.stressFollowsStrain(p.band[i] >= 0) ? m.intactStress(p.strain[i]) : p.stress[i];
+}
+
 // What a particle reads from the updated grid: the velocity v^{n+1} and its change at the
 // particle, and (WithStrain) the velocity gradient L = sum v_n (x) grad N_n.
 struct Gathered {
