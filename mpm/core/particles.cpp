@@ -1,5 +1,6 @@
 #include "mpm/core/particles.hpp"
 
+#include <bit>
 #include <utility>
 
 namespace ecm::mpm {
@@ -26,6 +27,23 @@ std::size_t Particles::bytesPerParticle() const {
   if (!integrity.empty()) b += sizeof(double);
   if (!secondBand.empty()) b += sizeof(std::int32_t);
   return b;
+}
+
+std::vector<SharedMassVolume> sharedMassAndVolume(const Particles& p, std::size_t materials) {
+  std::vector<SharedMassVolume> shared(materials);
+  std::vector<bool> seen(materials, false);
+  const auto same = [](double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); };
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const std::size_t m = p.material[i];
+    if (m >= materials) return {};
+    if (!seen[m]) {
+      shared[m] = {p.mass[i], p.volume[i]};
+      seen[m] = true;
+    } else if (!same(shared[m].mass, p.mass[i]) || !same(shared[m].volume, p.volume[i])) {
+      return {};
+    }
+  }
+  return shared;
 }
 
 namespace {

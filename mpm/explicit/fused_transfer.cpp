@@ -49,7 +49,7 @@ TransferSetup setupOf(const StepSetup& s, const ScatterOrder& order) {
 struct PassArrays {
   Vec2* __restrict position;
   Vec2* __restrict velocity;
-  const double* __restrict mass;
+  const double* __restrict mass;    // (not read where the material's points share it: `shared`)
   const double* __restrict volume;
   Voigt* __restrict strain;
   Voigt* __restrict stress;  // written for the far points and those that left the grid only
@@ -66,8 +66,8 @@ PassArrays arraysOf(Particles& p) {
 
 template <ShapeFunction F>
 ChunkOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid, Particles& particles, std::size_t c,
-                                 double dt, double flip, const Material* materials, ScatterTarget out,
-                                 RowSpan& measured, std::vector<std::uint32_t>& deferred,
+                                 double dt, double flip, const Material* materials, const SharedMassVolume* shared,
+                                 ScatterTarget out, RowSpan& measured, std::vector<std::uint32_t>& deferred,
                                  std::vector<std::uint32_t>& far) {
   const int nx = t.grid.nodesX();
   const double pic = 1.0 - flip;
@@ -128,8 +128,9 @@ ChunkOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid,
       const std::uint32_t i = scatters[k];
       Stencil s;
       expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
-      detail::scatterParticle<F, true, true>(s, nx, p.mass[i], p.velocity[i], p.volume[i], sig[k], gravity,
-                                             withGravity, out);
+      const SharedMassVolume mv = shared ? shared[p.material[i]] : SharedMassVolume{p.mass[i], p.volume[i]};
+      detail::scatterParticle<F, true, true>(s, nx, mv.mass, p.velocity[i], mv.volume, sig[k], gravity, withGravity,
+                                             out);
     }
   }
   measured = span.rows(nx);
@@ -233,13 +234,14 @@ bool gatherStressScatter(const StepSetup& setup, const Clock& clock, GridFields&
   };
   std::vector<Segment> segments(order.chunks());
   std::vector<ChunkOutcome> outcome(parts);
+  const SharedMassVolume* shared = fused.shared.empty() ? nullptr : fused.shared.data();
   withShapeFunction(scene.solver.shapeFunction, [&]<ShapeFunction F>() {
     forEachChunkByColour(order, threads, [&](std::size_t c, int th) {
       const auto k = static_cast<std::size_t>(th);
       std::vector<std::uint32_t>& mine = fused.deferredPerThread[k];
       const auto begin = static_cast<std::uint32_t>(mine.size());
       const ChunkOutcome o = gatherStressScatter<F>(tr, grid, particles, c, clock.dt, scene.solver.explicitScheme.flip,
-                                                    setup.materials.data(), target, order.measured[c], mine,
+                                                    setup.materials.data(), shared, target, order.measured[c], mine,
                                                     fused.farPerThread[k]);
       segments[c] = {th, begin, static_cast<std::uint32_t>(mine.size())};
       outcome[k].notFinite = std::min(outcome[k].notFinite, o.notFinite);

@@ -24,6 +24,9 @@ struct FusedPass {
   // The grid holds the scatter of the present particles (their mass, momentum and forces, loads
   // not yet added): the next step starts at its grid phase.
   bool gridHoldsState = false;
+  // The mass and volume each material's points share (sharedMassAndVolume; empty: they differ,
+  // the pass reads the per-point arrays), found again whenever the grid is rebuilt.
+  std::vector<SharedMassVolume> shared;
   std::vector<std::uint32_t> deferred;  // the points left to updateStresses, in index order
   std::vector<std::pair<std::uint32_t, std::uint32_t>> chunkDeferred;  // per chunk of the scatter order: its range in `deferred`
   // Per thread, while the pass runs: its deferred points and its far ones (deferred or not).

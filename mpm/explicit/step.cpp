@@ -43,6 +43,7 @@ void Solver::advance() {
   if (s.scene.solver.explicitScheme.scheme == UpdateScheme::USL) {
     if (!fused_.gridHoldsState) {  // P2G of this step: first step, restart, state edited
       storeIntactStresses();      // (it scatters the stored stresses)
+      fused_.shared = sharedMassAndVolume(p, s.materials.size());  // (the particles may have been edited)
       timed(StepPhase::Rebuild, [&] { scatterState(s, clock.step, p, grid, st.order, fused_); });
     }
     fused_.gridHoldsState = false;  // until the pass below has scattered every point anew

@@ -1,7 +1,10 @@
-// The particle arrays: band storage order.
+// The particle arrays: band storage order; the mass and volume a material's points share.
 #include "mpm/core/particles.hpp"
 
 #include <gtest/gtest.h>
+
+#include "mpm/setup/seeding.hpp"
+#include "test_scenes.hpp"
 
 namespace ecm::mpm::test {
 namespace {
@@ -28,6 +31,44 @@ TEST(Particles, SortingBandsKeepsEveryParticlesBandAndPutsThemInParticleOrder) {
     EXPECT_EQ(b.integrity, 0.1 * (i + 1));
     EXPECT_EQ(b.jump, Vec2(i, -i));
   }
+}
+
+// Seeding gives every point the cell's share of the volume, cell area / k^2 x thickness, and
+// mass = density x volume: each material's points share both (the fused pass reads them once).
+TEST(SharedMassAndVolume, SeededPointsOfAMaterialShareThem) {
+  const Scene scene = notchedCrackingBlock();
+  Particles p = seedParticles(scene);
+  const std::vector<SharedMassVolume> shared = sharedMassAndVolume(p, scene.materials.size());
+  ASSERT_EQ(shared.size(), 1u);
+  const double volume = scene.grid.cellArea() / (scene.particlesPerCell * scene.particlesPerCell) * scene.thickness;
+  EXPECT_EQ(shared[0].volume, volume);
+  EXPECT_EQ(shared[0].mass, scene.materials[0].density * volume);
+  p.mass[5] *= 2.0;  // one point with a mass of its own: nothing is shared
+  EXPECT_TRUE(sharedMassAndVolume(p, scene.materials.size()).empty());
+}
+
+// A point with a mass and volume of its own (the arrays, not the shared values) is scattered
+// with them by the fused pass: it follows the plain phases as every other point does (to the
+// order of the sums). With the shared values it would carry a third of its mass.
+TEST(SharedMassAndVolume, APointWithItsOwnMassIsScatteredWithIt) {
+  Scene scene = notchedCrackingBlock();
+  Solver fused(scene, 1), plain(scene, 1);
+  for (Solver* s : {&fused, &plain}) {
+    Particles& p = s->editParticles();
+    p.mass[100] *= 3.0;
+    p.volume[100] *= 3.0;
+  }
+  for (int n = 0; n < 300; ++n) {
+    fused.advance();
+    plain.advanceByPhases();
+  }
+  const Particles &a = fused.particles(), &b = plain.particles();
+  double worst = 0.0, scale = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    worst = std::max(worst, (a.velocity[i] - b.velocity[i]).norm());
+    scale = std::max(scale, b.velocity[i].norm());
+  }
+  EXPECT_LT(worst, 1e-9 * scale);
 }
 
 }  // namespace
