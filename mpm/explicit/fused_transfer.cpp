@@ -98,7 +98,7 @@ ChunkOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid,
       const Vec2 x = p.position[i] + dt * at.velocity;
       p.velocity[i] = vp;
       p.position[i] = x;
-      if (!(vp.allFinite() && x.allFinite())) {
+      if (!detail::finiteMotion(vp, x)) {
         if (r.notFinite == kNoParticle) r.notFinite = i;
         continue;
       }

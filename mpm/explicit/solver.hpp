@@ -45,7 +45,7 @@ class Solver {
   const std::vector<Material>& materials() const { return setup_.materials; }
   EffectiveSize effectiveSize() const { return setup_.size; }
   int threads() const { return setup_.threads; }
-  // The state and the particles with every stress stored. The explicit passes leave the stress
+  // The state and the particles with every stress stored. The fused USL pass leaves the stress
   // of an elastic or intact point (a : strain) unstored: 48 bytes of memory traffic less per
   // point and step (docs/model.md, "An intact point's stress"); these accessors store them first,
   // bitwise what the step computed. A reference kept across advance() sees the stresses as of

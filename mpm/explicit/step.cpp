@@ -79,8 +79,8 @@ void Solver::phases() {
   Particles& p = st.particles;
   GridFields& grid = st.grid;
   const Clock& clock = st.clock;
+  storeIntactStresses();          // the plain phases' P2G reads every stress (and their updates store them all)
   fused_.gridHoldsState = false;  // the plain phases leave no scatter for the next step
-  intactStressesUnstored_ = true; // their P2G computes a : strain, their strain pass stores none
   const auto p2g = [&](unsigned what) {
     timed(StepPhase::P2G, [&] { particleToGrid(s, clock.step, p, grid, st.order, what); });
     if (what & kForces) timed(StepPhase::Grid, [&] { addLoads(s, clock.time, p, grid, st.loads); });

@@ -24,20 +24,7 @@ struct ScatterSetup {
   const Grid& grid;
   Vec2 invCell, halfWidth, gravity;
   const ScatterOrder& order;
-  const Material* materials;  // (the forces' a : strain of the points whose stress is not stored)
 };
-
-// Particle i's share of a scatter; its force from detail::scatteredStress.
-template <ShapeFunction F, bool MassMomentum, bool Forces, bool Mass = MassMomentum>
-inline void scatterOne(const ScatterSetup& t, const Stencil& s, int nx, const Particles& p, std::size_t i,
-                       bool withGravity, ScatterTarget out) {
-  if constexpr (Forces)
-    detail::scatterParticle<F, MassMomentum, Forces, Mass>(s, nx, p.mass[i], p.velocity[i], p.volume[i],
-                                                           detail::scatteredStress(p, i, t.materials), t.gravity,
-                                                           withGravity, out);
-  else
-    detail::scatterParticle<F, MassMomentum, Forces, Mass>(s, nx, p, i, t.gravity, withGravity, out);
-}
 
 // The particles of chunk c in index order; Stencils: located at their positions first, and the
 // rows they start on measured. A particle whose stencil starts outside the chunk's plan does not
@@ -67,7 +54,7 @@ std::size_t scatterChunk(const ScatterSetup& t, Particles& p, std::size_t c, Sca
     }
     Stencil s;
     expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
-    scatterOne<F, MassMomentum, Forces>(t, s, nx, p, i, withGravity, out);
+    detail::scatterParticle<F, MassMomentum, Forces>(s, nx, p, i, t.gravity, withGravity, out);
   }
   if constexpr (Stencils) measured = span.rows(nx);
   return bad;
@@ -80,7 +67,7 @@ void scatterListed(const ScatterSetup& t, Particles& p, const std::vector<std::u
   for (const std::uint32_t i : listed) {
     Stencil s;
     expandStencil<F>(p.stencilAt[i], t.invCell, t.halfWidth, s);
-    scatterOne<F, MassMomentum, Forces, Mass>(t, s, nx, p, i, withGravity, out);
+    detail::scatterParticle<F, MassMomentum, Forces, Mass>(s, nx, p, i, t.gravity, withGravity, out);
   }
 }
 
@@ -120,7 +107,7 @@ std::size_t gather(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, co
     vp = flip * (vp + at.velocityChange) + pic * at.velocity;
     p.position[i] += dt * at.velocity;
     if constexpr (WithStrain) p.strainIncrement[i] = detail::strainIncrement(at, dt);
-    if (bad == kNoParticle && !(vp.allFinite() && p.position[i].allFinite())) bad = i;
+    if (bad == kNoParticle && !detail::finiteMotion(vp, p.position[i])) bad = i;
   }
   return bad;
 }
@@ -135,8 +122,7 @@ void strainStress(const Grid& g, const Vec2& invCell, const Vec2& halfWidth, con
     Stencil s;
     expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
     const Voigt d = detail::strainIncrement(detail::gatherParticle<F, true>(s, nx, grid), dt);
-    Voigt unstored;  // a : strain, which the next P2G computes (Solver::particles stores it)
-    if (materials[p.material[i]].closedFormStress(d, p.band[i] >= 0, p.strain[i], unstored)) continue;
+    if (materials[p.material[i]].closedFormStress(d, p.band[i] >= 0, p.strain[i], p.stress[i])) continue;
     p.strainIncrement[i] = d;
     deferred.push_back(static_cast<std::uint32_t>(i));
   }
@@ -160,7 +146,7 @@ std::size_t gatherRemapChunk(const ScatterSetup& t, const GridFields& grid, Part
     Vec2& vp = p.velocity[i];
     vp = flip * (vp + at.velocityChange) + pic * at.velocity;
     p.position[i] += dt * at.velocity;
-    if (bad == kNoParticle && !(vp.allFinite() && p.position[i].allFinite())) bad = i;
+    if (bad == kNoParticle && !detail::finiteMotion(vp, p.position[i])) bad = i;
     if (s.base < lo || s.base >= hi) continue;  // far: remapped after the colours
     detail::scatterParticle<F, true, false, false>(s, nx, p, i, t.gravity, false, out);
   }
@@ -232,7 +218,7 @@ void particleToGrid(const StepSetup& setup, long step, Particles& particles, Gri
   }
   detail::zeroScatterFields(threads, grid, what & kMassMomentum, what & kForces);
   const ScatterFns fn = scatterFor(scene.solver.shapeFunction, what);
-  const ScatterSetup t{g, setup.invCell, setup.halfWidth, scene.solver.gravity, order, setup.materials.data()};
+  const ScatterSetup t{g, setup.invCell, setup.halfWidth, scene.solver.gravity, order};
   const ScatterTarget target = detail::targetOf(grid);
   std::vector<std::vector<std::uint32_t>> far(static_cast<std::size_t>(threads));
   std::vector<std::size_t> bad(static_cast<std::size_t>(threads), kNoParticle);
@@ -291,7 +277,7 @@ void gridToParticleAndRemap(const StepSetup& setup, const Clock& clock, GridFiel
   const Scene& scene = setup.scene;
   const int threads = setup.threads;
   detail::zeroScatterFields(threads, grid, true, false, /*keepMass=*/true);
-  const ScatterSetup t{scene.grid, setup.invCell, setup.halfWidth, scene.solver.gravity, order, setup.materials.data()};
+  const ScatterSetup t{scene.grid, setup.invCell, setup.halfWidth, scene.solver.gravity, order};
   const ScatterTarget target = detail::targetOf(grid);
   std::vector<std::size_t> bad(static_cast<std::size_t>(threads), kNoParticle);
   withShapeFunction(scene.solver.shapeFunction, [&]<ShapeFunction F>() {

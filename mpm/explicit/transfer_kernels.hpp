@@ -36,6 +36,14 @@ void mergeSorted(std::vector<std::vector<std::uint32_t>>& perThread, std::vector
 
 inline constexpr std::size_t kNoParticle = std::numeric_limits<std::size_t>::max();
 
+// Whether a particle's velocity and position are finite: Eigen's allFinite() became a call where
+// the compiler stopped inlining in these loops (measured: the MUSL remap 45 % slower).
+// Branch-free, as Eigen's: y - y is 0 for a finite y and NaN otherwise, and NaN != NaN.
+inline bool finiteMotion(const Vec2& v, const Vec2& x) {
+  const double zero = (v[0] - v[0]) + (v[1] - v[1]) + (x[0] - x[0]) + (x[1] - x[1]);
+  return zero == zero;
+}
+
 // The particle range of part t of n (for the gathers: each particle on its own, any split gives the same bits).
 inline std::pair<std::size_t, std::size_t> partRange(std::size_t count, int t, int n) {
   return {count * static_cast<std::size_t>(t) / static_cast<std::size_t>(n),
@@ -78,14 +86,6 @@ inline void scatterParticle(const Stencil& s, int nx, const Particles& p, std::s
                             bool withGravity, ScatterTarget out) {
   scatterParticle<F, MassMomentum, Forces, Mass>(s, nx, p.mass[i], p.velocity[i], p.volume[i], p.stress[i], gravity,
                                            withGravity, out);
-}
-
-// The stress particle i scatters: a : strain where its stress follows its strain (elastic,
-// intact enriched: the explicit passes do not store those, Material::stressFollowsStrain),
-// its stored stress otherwise. Bitwise the stress its last update computed.
-inline Voigt scatteredStress(const Particles& p, std::size_t i, const Material* materials) {
-  const Material& m = materials[p.material[i]];
-  return m.stressFollowsStrain(p.band[i] >= 0) ? m.intactStress(p.strain[i]) : p.stress[i];
 }
 
 // What a particle reads from the updated grid: the velocity v^{n+1} and its change at the
