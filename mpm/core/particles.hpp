@@ -20,7 +20,8 @@ struct Particles {
   std::vector<double> mass;          // t
   std::vector<double> volume;        // mm^3 (initial; small strain)
   std::vector<Voigt> strain;         // engineering shear
-  std::vector<Voigt> stress;         // MPa
+  std::vector<Voigt> stress;         // MPa (an intact point's: stored when the explicit solver's particles
+                                     // are read, docs/model.md "An intact point's stress")
   std::vector<Voigt> strainIncrement;// of the current step
   std::vector<std::uint8_t> material;// index into the scene's materials
   std::vector<std::int32_t> band;    // index into `bands`, -1 while intact (enriched)
