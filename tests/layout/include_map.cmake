@@ -1,4 +1,4 @@
-# The project's rooms and who may include whom (README, "Layout"):
+# The project's rooms and who may include whom (docs/layout.md, "Layout"):
 #   material <- io <- {driver, calibration, mpm} <- study <- python
 # (python/ includes study/ for ecm-study's plan and report on the Dask path, python/ecm/study.py)
 #   material <- umat (the Abaqus UMAT: a shared library over the material alone)
