@@ -9,6 +9,7 @@
 #include <optional>
 #include <sstream>
 
+#include "umat/call_trace.hpp"
 #include "umat/umat_layout.hpp"
 
 namespace ecm::umat {
@@ -242,8 +243,8 @@ extern "C" void umat_(double* stress, double* statev, double* ddsdde, double* ss
                       const int* ndi, const int* nshr, const int* ntens, const int* nstatv, const double* props,
                       const int* nprops, const double* /*coords*/, const double* drot, double* pnewdt,
                       const double* celent, const double* /*dfgrd0*/, const double* /*dfgrd1*/, const int* noel,
-                      const int* npt, const int* /*layer*/, const int* /*kspt*/, const int* /*kstep*/,
-                      const int* /*kinc*/, size_t /*cmname_len*/) {
+                      const int* npt, const int* /*layer*/, const int* /*kspt*/, const int* kstep,
+                      const int* kinc, size_t /*cmname_len*/) {
   using namespace ecm::umat;
   const Inputs in{stran, dstran, *ndi, *nshr, *ntens, *nstatv, *nprops, props, celent ? *celent : 0.0, drot};
   const Outputs out{stress, statev, ddsdde, sse, spd, pnewdt};
@@ -255,13 +256,17 @@ extern "C" void umat_(double* stress, double* statev, double* ddsdde, double* ss
     why = e.what();
     fatal = true;
   }
-  if (why.empty()) return;
   if (fatal) {
     std::fprintf(stderr, "*ERROR in ecm umat (element %d, point %d): %s\n", noel ? *noel : 0, npt ? *npt : 0, why.c_str());
     std::exit(2);  // bad input: the analysis cannot go on (Abaqus's XIT is not available to a C library)
   }
-  // A failed update: ask the caller for a smaller increment; the state stays at the start.
-  *pnewdt = std::min(*pnewdt, 0.5);
-  std::fprintf(stderr, "*WARNING in ecm umat (element %d, point %d): %s; PNEWDT = %g\n", noel ? *noel : 0,
-               npt ? *npt : 0, why.c_str(), *pnewdt);
+  if (!why.empty()) {
+    // A failed update: ask the caller for a smaller increment; the state stays at the start. A
+    // PNEWDT of 0 or less is CalculiX's "no request" (docs/fe-codes.md): 0.5 replaces it.
+    *pnewdt = *pnewdt > 0.0 ? std::min(*pnewdt, 0.5) : 0.5;
+    std::fprintf(stderr, "*WARNING in ecm umat (element %d, point %d): %s; PNEWDT = %g\n", noel ? *noel : 0,
+                 npt ? *npt : 0, why.c_str(), *pnewdt);
+  }
+  traceCall({kstep ? *kstep : 0, kinc ? *kinc : 0, noel ? *noel : 0, npt ? *npt : 0, *ntens, *nstatv, stran, dstran, stress,
+             statev, *sse, *spd, *pnewdt});
 }

@@ -39,9 +39,9 @@ struct Caller {
     std::vector<double> stress, statev, ddsdde;
     double sse, spd, pnewdt;
   };
-  // `rotation`: DROT (column-major), the identity when not given.
-  Trial call(const std::vector<double>& dstran, const double* rotation = nullptr) const {
-    Trial t{stress, statev, ddsdde, sse, spd, 1.0};
+  // `rotation`: DROT (column-major), the identity when not given; `pnewdtIn`: PNEWDT as passed in.
+  Trial call(const std::vector<double>& dstran, const double* rotation = nullptr, double pnewdtIn = 1.0) const {
+    Trial t{stress, statev, ddsdde, sse, spd, pnewdtIn};
     double scd = 0, rpl = 0, ddsddt[6] = {}, drplde[6] = {}, drpldt = 0, time[2] = {0, 0}, dtime = 1, temp = 0, dtemp = 0;
     double predef = 0, dpred = 0, coords[3] = {}, drot[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, dfgrd[9] = {};
     if (rotation) std::copy(rotation, rotation + 9, drot);
@@ -182,6 +182,18 @@ TEST(Umat, AsksForASmallerIncrementAtASnapBackItMustNotRelease) {
       EXPECT_LT(t.stress[0], 0.5 * test::kFt);
     }
   }
+}
+
+TEST(Umat, AsksCalculixForASmallerIncrementToo) {
+  // CalculiX passes PNEWDT = -1 for "no request" and cuts the increment back only when a
+  // material returns a positive value (its checkconvergence.c): the request must be 0.5, not
+  // min(-1, 0.5). Abaqus passes a large value; both read 0.5 as "half the increment".
+  Caller c(3, 3, concreteProps(500.0, 0.0));
+  c.commit({test::kFt / test::kE, 0, 0, 0, 0, 0});
+  EXPECT_EQ(c.call({2e-4, 0, 0, 0, 0, 0}, nullptr, -1.0).pnewdt, 0.5);
+  EXPECT_EQ(c.call({2e-4, 0, 0, 0, 0, 0}, nullptr, 1e36).pnewdt, 0.5);
+  EXPECT_EQ(c.call({2e-4, 0, 0, 0, 0, 0}, nullptr, 0.25).pnewdt, 0.25);  // a smaller request stands
+  EXPECT_EQ(c.call({-1e-5, 0, 0, 0, 0, 0}, nullptr, -1.0).pnewdt, -1.0);  // a converged update asks nothing
 }
 
 TEST(Umat, BadPropsStopTheAnalysisWithTheReason) {
