@@ -58,9 +58,16 @@ class TwoPhasePoint3D {
                              std::optional<BandState3>& onset, UpdateOptions options = {}) const {
     const Voigt6 end = strain + strainIncrement;
     const Voigt6 s = stiffness_ * end;
-    if (onsetBound_ * (s.head<3>().squaredNorm() + 2.0 * s.tail<3>().squaredNorm()) < law_.onsetDrivingForce()) {
+    // |sigma|^2 from the stress's registers: reading s back from memory straddles two stores,
+    // which stalls store forwarding (docs/performance.md).
+    const double squared = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+    if (onsetBound_ * squared < law_.onsetDrivingForce()) {
       strain = end;  // surely intact: Y <= onsetBound_ |sigma|^2 < F(0)
-      return {s, stiffness_};  // (the tangent written once, not zeroed first)
+      // The tangent written once (not zeroed first), by Eigen's unrolled packet copy: an
+      // aggregate copy of the 288 bytes became a call to memcpy (docs/performance.md).
+      UpdateResult3 r{s, Tangent6()};
+      r.tangent = stiffness_;
+      return r;
     }
     return updateIntactSlow(strain, strainIncrement, size, onset, options);
   }

@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <random>
 
 #include "material/material.hpp"
@@ -353,6 +355,39 @@ TEST(TwoPhasePoint3D, RandomPathsKeepThePhysics) {
   EXPECT_GT(converged, 10000);
   EXPECT_GT(cracked, 100);
   EXPECT_GT(tangents, 20);
+}
+
+TEST(TwoPhasePoint3D, AnIntactUpdateIsTheProductWithTheStiffness) {
+  // updateIntact's fast path (the cheap bound, docs/performance.md) computes its bound from the
+  // stress's registers and copies the tangent by packets: its stress must be stiffness * strain
+  // bit for bit and its tangent the stiffness, as updateIntactSlow's. Random strains up to 0.3 x
+  // and 1.2 x the uniaxial onset strain, increments up to a quarter of it: both paths are taken
+  // (counted by |sigma| below and above f_t' / 2).
+  const TwoPhasePoint3D model(params3().enriched());
+  std::mt19937_64 rng(20261204);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double onset = test::kFt / test::kE;
+  const auto size = EffectiveSize3::fixed(2.5);
+  long fast = 0, slow = 0;
+  for (int k = 0; k < 20000; ++k) {
+    Voigt6 strain, d;
+    const double scale = k % 2 ? 1.2 : 0.3;
+    for (int c = 0; c < 6; ++c) strain[c] = scale * onset * u(rng), d[c] = 0.25 * scale * onset * u(rng);
+    const Voigt6 end = strain + d;
+    const Voigt6 product = model.stiffness() * end;
+    const bool surely = model.onsetFraction(strain, d) == std::nullopt &&
+                        model.onsetFraction(Voigt6::Zero(), strain) == std::nullopt;
+    std::optional<BandState3> opened;
+    const UpdateResult3 r = model.updateIntact(strain, d, size, opened);
+    if (opened || !surely) continue;
+    ASSERT_TRUE(r.converged());
+    for (int c = 0; c < 6; ++c) ASSERT_EQ(std::bit_cast<std::uint64_t>(r.stress[c]), std::bit_cast<std::uint64_t>(product[c])) << k;
+    ASSERT_TRUE(r.tangent == model.stiffness()) << k;
+    ASSERT_TRUE(strain == end) << k;
+    ++(product.head<3>().squaredNorm() + 2.0 * product.tail<3>().squaredNorm() < 0.25 * test::kFt * test::kFt ? fast : slow);
+  }
+  EXPECT_GT(fast, 1000);
+  EXPECT_GT(slow, 100);
 }
 
 TEST(TwoPhasePoint3D, RefusesASecondBandAndA2DHypothesis) {
