@@ -20,11 +20,14 @@ src=$(ls -d "$out"/src/ccx_*/src 2>/dev/null | head -n1 || true)
 if [[ -z "$src" ]]; then
   apt_dir="$out/apt"
   mkdir -p "$apt_dir/sources.list.d" "$apt_dir/lists/partial" "$apt_dir/cache/archives/partial"
+  # Debian's own entries only (a third-party repository may have no source indices).
   for f in /etc/apt/sources.list.d/*.sources; do
-    [[ -f "$f" ]] && sed 's/^Types:.*/Types: deb-src/' "$f" > "$apt_dir/sources.list.d/$(basename "$f")"
+    [[ -f "$f" ]] || continue
+    awk 'BEGIN { RS = ""; ORS = "\n\n" } /URIs:[^\n]*debian/ { sub(/Types:[^\n]*/, "Types: deb-src"); print }' "$f" \
+      > "$apt_dir/sources.list.d/$(basename "$f")"
   done
   for f in /etc/apt/sources.list /etc/apt/sources.list.d/*.list; do
-    [[ -f "$f" ]] && sed -n 's/^deb /deb-src /p' "$f" > "$apt_dir/sources.list.d/$(basename "$f").list"
+    [[ -f "$f" ]] && sed -n 's/^deb \(.*debian.*\)/deb-src \1/p' "$f" > "$apt_dir/sources.list.d/$(basename "$f").list"
   done
   apt_opts=(-o "Dir::Etc::SourceList=/dev/null" -o "Dir::Etc::SourceParts=$apt_dir/sources.list.d"
             -o "Dir::State::Lists=$apt_dir/lists" -o "Dir::Cache=$apt_dir/cache" -o "APT::Sandbox::User=root")
