@@ -59,12 +59,12 @@ class TwoPhasePoint3D {
     const Voigt6 end = strain + strainIncrement;
     const Voigt6 s = stiffness_ * end;
     // |sigma|^2 from the stress's registers: reading s back from memory straddles two stores,
-    // which stalls store forwarding (docs/performance.md).
+    // which stalls store forwarding.
     const double squared = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
     if (onsetBound_ * squared < law_.onsetDrivingForce()) {
       strain = end;  // surely intact: Y <= onsetBound_ |sigma|^2 < F(0)
       // The tangent written once (not zeroed first), by Eigen's unrolled packet copy: an
-      // aggregate copy of the 288 bytes became a call to memcpy (docs/performance.md).
+      // aggregate copy of the 288 bytes became a call to memcpy.
       UpdateResult3 r{s, Tangent6()};
       r.tangent = stiffness_;
       return r;
