@@ -67,13 +67,13 @@ def lpanel_input(size, thickness, props, to=1.0, increment=0.01, element="C3D8")
     lines += ["*NSET, NSET=BASE"] + [f"{n}," for n in base + [n + layer for n in base]]
     lines += ["*NSET, NSET=BASE0"] + [f"{n}," for n in base]
     lines += ["*NSET, NSET=PLATE"] + [f"{n}," for n in plate + [n + layer for n in plate]]
-    lines += [f"*NSET, NSET=LOAD", f"{ref},"]
+    lines += ["*NSET, NSET=LOAD", f"{ref},"]
     lines += ["*MATERIAL, NAME=ABAQUS_ECM", f"*USER MATERIAL, CONSTANTS={len(props)}",
               ", ".join(f"{p:.17g}" for p in props[:8]), ", ".join(f"{p:.17g}" for p in props[8:]),
               "*DEPVAR", str(STATE_VARIABLES), "*SOLID SECTION, ELSET=EALL, MATERIAL=ABAQUS_ECM",
               f"*RIGID BODY, NSET=PLATE, REF NODE={ref}, ROT NODE={rot}",
               "*BOUNDARY", "BASE, 1, 2, 0.", "BASE0, 3, 3, 0.", f"{ref}, 3, 3, 0.", f"{rot}, 1, 2, 0.",
-              f"*STEP, INC=100000", "*STATIC",
+              "*STEP, INC=100000", "*STATIC",
               f"{increment:.17g}, {to:.17g}, 1e-6, {increment:.17g}",
               "*BOUNDARY", f"{ref}, 2, 2, {to:.17g}",
               "*NODE PRINT, NSET=LOAD", "U, RF",
