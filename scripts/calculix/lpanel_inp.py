@@ -23,9 +23,9 @@ import argparse
 import sys
 
 import ecm
+from element_inp import STATE_VARIABLES  # docs/fe-codes.md, STATEV
 
 PANEL, CUT, PLATE = 500.0, 250.0, (460.0, 480.0)
-STATE_VARIABLES = 17
 
 
 def material_props(material, size):
