@@ -4,9 +4,14 @@
 // the same scene on the medium mesh); its pattern is that of every step.
 #include <benchmark/benchmark.h>
 
-#include <Eigen/SparseLU>
-#include <map>
+#include <malloc.h>
 
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <map>
+#include <vector>
+
+#include "mpm/implicit/amg_solver.hpp"
 #include "mpm/implicit/implicit_solver.hpp"
 #include "mpm/scene/scene_yaml.hpp"
 #ifdef ECM_HAVE_UMFPACK
@@ -17,9 +22,14 @@ namespace {
 
 using Matrix = Eigen::SparseMatrix<double>;
 
+struct Tangent {
+  Matrix k;
+  std::vector<int> components;  // x or y, per unknown (for AMG)
+};
+
 // The tangent of the DEN coarse (0), medium (1) or fine (2) mesh.
-const Matrix& denTangent(int mesh) {
-  static std::map<int, Matrix> cache;
+const Tangent& denTangentAndComponents(int mesh) {
+  static std::map<int, Tangent> cache;
   if (auto it = cache.find(mesh); it != cache.end()) return it->second;
   ecm::mpm::Scene scene = ecm::mpm::loadSceneFile(ECM_SOURCE_DIR "/data/den/den-4b-coarse-implicit.yaml");
   if (mesh > 0) {  // the medium and fine meshes of data/den/den-4b-medium.yaml and -fine.yaml
@@ -29,8 +39,12 @@ const Matrix& denTangent(int mesh) {
     scene.grid.cellsX = scene.grid.cellsY = mesh == 1 ? 162 : 322;
   }
   ecm::mpm::ImplicitSolver solver(scene, 1);
-  return cache[mesh] = solver.tangentAtStart(0.001);
+  Tangent& t = cache[mesh];
+  t.k = solver.tangentAtStart(0.001, &t.components);
+  return t;
 }
+
+const Matrix& denTangent(int mesh) { return denTangentAndComponents(mesh).k; }
 
 // A step's set-up (stencils, unknowns, K's pattern) and one trial with the tangent assembled: the
 // rest of a Newton iteration's cost. range(0): mesh; range(1): threads.
@@ -74,12 +88,17 @@ void BM_Umfpack(benchmark::State& state) {
   Eigen::UmfPackLU<Matrix> lu;
   if (state.range(1) >= 1) lu.umfpackControl()(UMFPACK_STRATEGY) = UMFPACK_STRATEGY_SYMMETRIC;
   if (state.range(1) == 2) lu.umfpackControl()(UMFPACK_ORDERING) = UMFPACK_ORDERING_METIS;
+  const auto heapBefore = mallinfo2().uordblks;
   lu.analyzePattern(k);
+  lu.factorize(k);
+  // The heap the factors hold (with the symbolic analysis), as BM_AmgSolve's.
+  const double held = static_cast<double>(mallinfo2().uordblks) - static_cast<double>(heapBefore);
   for (auto _ : state) {
     lu.factorize(k);
     benchmark::DoNotOptimize(lu.info());
   }
   state.counters["unknowns"] = static_cast<double>(k.rows());
+  state.counters["bytes_per_unknown"] = held / static_cast<double>(k.rows());
 }
 BENCHMARK(BM_Umfpack)->Args({0, 0})->Args({0, 1})->Args({0, 2})->Args({1, 0})->Args({1, 1})->Args({1, 2})->Args({2, 1})->Unit(benchmark::kMillisecond);
 
@@ -94,6 +113,58 @@ void BM_UmfpackSolve(benchmark::State& state) {
 }
 // range(1): UMFPACK's steps of iterative refinement (its default is 2).
 BENCHMARK(BM_UmfpackSolve)->Args({0, 0})->Args({0, 2})->Args({1, 0})->Args({1, 2})->Args({2, 0})->Unit(benchmark::kMillisecond);
+#endif
+
+#ifdef ECM_HAVE_HYPRE
+// GMRES preconditioned by BoomerAMG (linear_solver: amg) on the same tangents: a solve with the
+// hierarchy kept (the time per solve, the iterations, the time per iteration) and, once, the
+// hierarchy's setup and the solver's memory per unknown (the heap it holds after its first solve:
+// hypre's copy of K, the hierarchy, GMRES's Krylov vectors). The start's tangent is elastic: once
+// bands soften a solve takes 2-4 times the iterations (docs/implicit.md, "The AMG solver").
+// range(0): mesh; range(1): the options, 0 the defaults, 1 strong threshold 0.25, 2 one level
+// coarsened aggressively, 3 l1 symmetric Gauss-Seidel, 4 l1-Jacobi (two sweeps), 5 a restart of 20.
+ecm::mpm::AmgOptions amgVariant(int v) {
+  ecm::mpm::AmgOptions o;
+  if (v == 1) o.strongThreshold = 0.25;
+  if (v == 2) o.aggressiveLevels = 1;
+  if (v == 3) o.relaxType = 8;
+  if (v == 4) o.relaxType = 18, o.sweeps = 2;
+  if (v == 5) o.krylovDimension = 20;
+  return o;
+}
+
+void BM_AmgSolve(benchmark::State& state) {
+  const Tangent& t = denTangentAndComponents(static_cast<int>(state.range(0)));
+  const auto heapBefore = mallinfo2().uordblks;
+  ecm::mpm::AmgSolver amg;
+  amg.options = amgVariant(static_cast<int>(state.range(1)));
+  amg.setComponents(t.components);
+  amg.setMatrix(t.k);
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(t.k.rows());
+  Eigen::VectorXd x;
+  if (!amg.solve(b, x)) state.SkipWithError("GMRES did not converge");
+  const double held = static_cast<double>(mallinfo2().uordblks) - static_cast<double>(heapBefore);
+  const double setup = amg.statistics().setupSeconds;
+  long iterations = 0, solves = 0;
+  const double start = amg.statistics().solveSeconds;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(amg.solve(b, x));
+    iterations += amg.lastIterations();
+    ++solves;
+  }
+  const double solving = amg.statistics().solveSeconds - start;
+  const auto n = static_cast<double>(t.k.rows());
+  state.counters["unknowns"] = n;
+  state.counters["setup_ms"] = 1e3 * setup;
+  state.counters["iterations"] = static_cast<double>(iterations) / static_cast<double>(std::max(solves, 1L));
+  state.counters["ms_per_iteration"] = 1e3 * solving / static_cast<double>(std::max(iterations, 1L));
+  state.counters["bytes_per_unknown"] = held / n;
+  state.counters["K_bytes_per_unknown"] = static_cast<double>(t.k.nonZeros()) * 12.0 / n;  // values and columns
+}
+BENCHMARK(BM_AmgSolve)
+    ->ArgsProduct({{0, 1}, {0, 1, 2, 3, 4, 5}})
+    ->Args({2, 0})
+    ->Unit(benchmark::kMillisecond);
 #endif
 
 }  // namespace

@@ -131,7 +131,8 @@ void AmgSolver::setup() {
   HYPRE_BoomerAMGSetCoarsenType(h_->amg, 10);     // HMIS
   HYPRE_BoomerAMGSetInterpType(h_->amg, 6);       // extended+i
   HYPRE_BoomerAMGSetPMaxElmts(h_->amg, 4);
-  HYPRE_BoomerAMGSetStrongThreshold(h_->amg, 0.5);
+  HYPRE_BoomerAMGSetStrongThreshold(h_->amg, options.strongThreshold);
+  if (options.aggressiveLevels > 0) HYPRE_BoomerAMGSetAggNumLevels(h_->amg, options.aggressiveLevels);
   if (components_.size() == static_cast<std::size_t>(h_->n)) {
     // hypre takes the array and frees it with the hierarchy.
     auto* functions = static_cast<HYPRE_Int*>(std::malloc(sizeof(HYPRE_Int) * components_.size()));
@@ -140,11 +141,12 @@ void AmgSolver::setup() {
     HYPRE_BoomerAMGSetNumFunctions(h_->amg, 2);
     HYPRE_BoomerAMGSetDofFunc(h_->amg, functions);
   }
-  HYPRE_BoomerAMGSetRelaxType(h_->amg, 6);        // symmetric hybrid Gauss-Seidel
+  HYPRE_BoomerAMGSetRelaxType(h_->amg, options.relaxType);
+  HYPRE_BoomerAMGSetNumSweeps(h_->amg, options.sweeps);
   HYPRE_BoomerAMGSetMaxIter(h_->amg, 1);          // one V-cycle per preconditioning
   HYPRE_BoomerAMGSetTol(h_->amg, 0.0);
   HYPRE_ParCSRGMRESCreate(MPI_COMM_WORLD, &h_->gmres);
-  HYPRE_GMRESSetKDim(h_->gmres, 50);
+  HYPRE_GMRESSetKDim(h_->gmres, options.krylovDimension);
   HYPRE_GMRESSetMaxIter(h_->gmres, maxIterations);
   HYPRE_GMRESSetTol(h_->gmres, tolerance);
   HYPRE_GMRESSetPrintLevel(h_->gmres, 0);
@@ -174,6 +176,7 @@ bool AmgSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     HYPRE_GMRESGetConverged(h_->gmres, &converged);
     HYPRE_ClearAllErrors();  // a solve that did not converge is answered below, not by hypre's error flag
     h_->x->get(x, h_->index);
+    lastIterations_ = iterations;
     if (freshIterations_ < 0) freshIterations_ = iterations;
     stats_.solves++;
     stats_.iterations += iterations;

@@ -12,6 +12,16 @@
 
 namespace ecm::mpm {
 
+// BoomerAMG's choices (docs/implicit.md, "The AMG solver"): the defaults are the ones measured
+// there; bench_implicit's BM_Amg* compare others on the DEN tangents.
+struct AmgOptions {
+  double strongThreshold = 0.5;  // a connection is strong above this share of the row's largest
+  int aggressiveLevels = 0;      // levels coarsened aggressively (fewer, cheaper levels)
+  int relaxType = 6;             // 6 symmetric hybrid Gauss-Seidel, 8 l1 symmetric Gauss-Seidel, 18 l1-Jacobi
+  int sweeps = 1;                // smoothing sweeps down and up
+  int krylovDimension = 50;      // GMRES's restart
+};
+
 struct AmgStatistics {
   long setups = 0;        // hierarchies built
   long solves = 0;        // GMRES solves
@@ -42,6 +52,9 @@ class AmgSolver {
 
   double tolerance = 1e-8;  // GMRES's relative residual (Newton corrects what is left)
   int maxIterations = 400;
+  AmgOptions options;       // read at the next hierarchy's setup
+  // Iterations of the last solve.
+  int lastIterations() const { return lastIterations_; }
 
  private:
   struct Hypre;  // hypre's objects (mpm/implicit/amg_solver.cpp)
@@ -49,6 +62,7 @@ class AmgSolver {
   AmgStatistics stats_;
   std::vector<int> components_;
   bool stale_ = true;      // the hierarchy must be rebuilt before the next solve
+  int lastIterations_ = 0;
   int freshIterations_ = -1;  // the first solve's iterations on a new hierarchy (-1: none yet)
   // A solve that takes more than this asks for a new hierarchy: twice a fresh one's count plus 10.
   int rebuildIterations() const { return freshIterations_ < 0 ? maxIterations : 2 * freshIterations_ + 10; }

@@ -336,9 +336,10 @@ void ImplicitSolver::restore(const SavedState& s) {
   luPattern_ = factorKey();
 }
 
-Eigen::SparseMatrix<double> ImplicitSolver::tangentAtStart(double dt) {
+Eigen::SparseMatrix<double> ImplicitSolver::tangentAtStart(double dt, std::vector<int>* components) {
   Attempt a;
   if (!prepare(dt, nullptr, a)) return {};
+  if (components) *components = unknownComponents(geometry_.dofs, a.reduction ? &*a.reduction : nullptr);
   evaluateTrial(setup_, particles_, geometry_, Eigen::VectorXd::Zero(a.du.size()), true, a.snapBack, a.trial);
   return a.trial.tangent;
 }

@@ -66,8 +66,9 @@ class ImplicitSolver {
   double loadFactor() const { return lambda_; }
   const LinearSolver& linearSolver() const { return lu_; }
   // The tangent over the unknowns of a step of dt from here, at du = 0 (for benchmarks of the
-  // linear solvers); empty if a particle left the grid.
-  Eigen::SparseMatrix<double> tangentAtStart(double dt);
+  // linear solvers); empty if a particle left the grid. components: which displacement
+  // component (0 x, 1 y) each unknown is, as AmgSolver::setComponents takes it.
+  Eigen::SparseMatrix<double> tangentAtStart(double dt, std::vector<int>* components = nullptr);
 
   // What a checkpoint stores besides the particles (mpm/implicit/implicit_checkpoint.hpp): with it and the
   // particles, a solver of the same scene continues bitwise as the one that was saved.

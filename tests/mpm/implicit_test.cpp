@@ -5,12 +5,16 @@
 // closed form (a block in uniaxial tension: delta = F L / (E A)).
 #include <gtest/gtest.h>
 
+#include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "bar_closed_form.hpp"
+#include "mpm/implicit/amg_solver.hpp"
 #include "mpm/implicit/implicit_solver.hpp"
 #include "mpm/implicit/newton_cycle.hpp"
+#include "mpm/scene/scene_yaml.hpp"
 #include "test_scenes.hpp"
 
 namespace ecm::mpm::test {
@@ -375,6 +379,43 @@ TEST(ImplicitAmg, TracesTheBarsSnapBackAsTheLUDoes) {
   EXPECT_LT(worst, 1e-6 * kBarWeakFt);
   EXPECT_NEAR(*std::max_element(amg.begin(), amg.end()), kBarWeakFt, 1e-3 * kBarWeakFt);
 }
+
+#ifdef ECM_HAVE_HYPRE
+// Every option of the AMG solver (AmgOptions; docs/implicit.md, "Its memory and its options")
+// solves the DEN coarse tangent to its tolerance: the residual |b - K x| <= 1e-8 |b| computed here,
+// not taken from hypre, and x equal to a sparse LU's to 1e-6 (K's condition leaves the
+// difference 1e-8 times it). The options reach hypre: aggressive coarsening doubles the
+// iterations (11 -> 22 in bench_implicit's BM_AmgSolve), a Jacobi smoother adds half.
+TEST(ImplicitAmg, EveryOptionSolvesTheDenTangentToItsTolerance) {
+  const Scene scene = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data/den/den-4b-coarse-implicit.yaml");
+  ImplicitSolver solver(scene, 1);
+  std::vector<int> components;
+  const Eigen::SparseMatrix<double> k = solver.tangentAtStart(0.001, &components);
+  ASSERT_GT(k.rows(), 10000);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(k.rows(), -1.0, 2.0);
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(k);
+  const Eigen::VectorXd exact = lu.solve(b);
+  std::vector<int> iterations;
+  for (int v = 0; v < 5; ++v) {
+    AmgSolver amg;
+    if (v == 1) amg.options.strongThreshold = 0.25;
+    if (v == 2) amg.options.aggressiveLevels = 1;
+    if (v == 3) amg.options.relaxType = 8;
+    if (v == 4) amg.options.relaxType = 18, amg.options.sweeps = 2;
+    amg.setComponents(components);
+    amg.setMatrix(k);
+    Eigen::VectorXd x;
+    ASSERT_TRUE(amg.solve(b, x)) << "options " << v;
+    EXPECT_LE((b - k * x).norm(), 1e-8 * b.norm() * (1.0 + 1e-6)) << "options " << v;
+    EXPECT_LE((x - exact).norm(), 1e-6 * exact.norm()) << "options " << v;
+    iterations.push_back(amg.lastIterations());
+  }
+  std::printf("[ amg options ] GMRES iterations: default %d, threshold 0.25 %d, aggressive %d, l1-GS %d, l1-Jacobi %d\n",
+              iterations[0], iterations[1], iterations[2], iterations[3], iterations[4]);
+  EXPECT_GE(iterations[2], iterations[0] + 5);
+  EXPECT_GT(iterations[4], iterations[0]);
+}
+#endif
 
 // The extrapolated start (docs/implicit.md) changes where Newton begins, not what it converges
 // to: on the bar through its snap-back both starts stay on the closed form (to 1e-3 of f_t', the
