@@ -122,7 +122,8 @@ BENCHMARK(BM_UmfpackSolve)->Args({0, 0})->Args({0, 2})->Args({1, 0})->Args({1, 2
 // hypre's copy of K, the hierarchy, GMRES's Krylov vectors). The start's tangent is elastic: once
 // bands soften a solve takes 2-4 times the iterations (docs/implicit.md, "The AMG solver").
 // range(0): mesh; range(1): the options, 0 the defaults, 1 strong threshold 0.25, 2 one level
-// coarsened aggressively, 3 l1 symmetric Gauss-Seidel, 4 l1-Jacobi (two sweeps), 5 a restart of 20.
+// coarsened aggressively, 3 l1 symmetric Gauss-Seidel, 4 l1-Jacobi (two sweeps), 5 a restart of 20,
+// 6 no ILU(0) on the finest level (hybrid Gauss-Seidel on every level: the defaults before 2026-12-04).
 ecm::mpm::AmgOptions amgVariant(int v) {
   ecm::mpm::AmgOptions o;
   if (v == 1) o.strongThreshold = 0.25;
@@ -130,6 +131,7 @@ ecm::mpm::AmgOptions amgVariant(int v) {
   if (v == 3) o.relaxType = 8;
   if (v == 4) o.relaxType = 18, o.sweeps = 2;
   if (v == 5) o.krylovDimension = 20;
+  if (v == 6) o.iluLevels = 0;
   return o;
 }
 
@@ -162,7 +164,7 @@ void BM_AmgSolve(benchmark::State& state) {
   state.counters["K_bytes_per_unknown"] = static_cast<double>(t.k.nonZeros()) * 12.0 / n;  // values and columns
 }
 BENCHMARK(BM_AmgSolve)
-    ->ArgsProduct({{0, 1}, {0, 1, 2, 3, 4, 5}})
+    ->ArgsProduct({{0, 1}, {0, 1, 2, 3, 4, 5, 6}})
     ->Args({2, 0})
     ->Unit(benchmark::kMillisecond);
 #endif
