@@ -17,7 +17,7 @@ namespace ecm::mpm {
 struct AmgOptions {
   double strongThreshold = 0.5;  // a connection is strong above this share of the row's largest
   int aggressiveLevels = 0;      // levels coarsened aggressively (fewer, cheaper levels)
-  int relaxType = 6;             // 6 symmetric hybrid Gauss-Seidel, 8 l1 symmetric Gauss-Seidel, 18 l1-Jacobi
+  int relaxType = 6;             // on the levels below iluLevels: 6 symmetric hybrid Gauss-Seidel, 8 l1 GS, 18 l1-Jacobi
   int sweeps = 1;                // smoothing sweeps down and up
   int iluLevels = 1;             // the finest levels smoothed by ILU(0) instead (hypre's ParILUK); 0: none
   int krylovDimension = 50;      // GMRES's restart
