@@ -8,10 +8,13 @@
 
 #include <Eigen/SparseLU>
 #include <algorithm>
+#include <chrono>
 #include <map>
 #include <vector>
 
 #include "mpm/implicit/amg_solver.hpp"
+#include "mpm/implicit/gmres.hpp"
+#include "mpm/implicit/linear_solver.hpp"
 #include "mpm/implicit/implicit_solver.hpp"
 #include "mpm/scene/scene_yaml.hpp"
 #ifdef ECM_HAVE_UMFPACK
@@ -114,6 +117,43 @@ void BM_UmfpackSolve(benchmark::State& state) {
 // range(1): UMFPACK's steps of iterative refinement (its default is 2).
 BENCHMARK(BM_UmfpackSolve)->Args({0, 0})->Args({0, 2})->Args({1, 0})->Args({1, 2})->Args({2, 0})->Unit(benchmark::kMillisecond);
 #endif
+
+// Krylov on the kept factorisation (ImplicitSettings::krylovIterations; docs/implicit.md): what a
+// GMRES vector costs (a solve with the kept LU, a product with K, the orthogonalisation) against
+// one factorisation, through the solver's own LinearSolver. Their ratio, `break_even`, is the
+// most Krylov vectors a Newton step may spend before a fresh factorisation would have been
+// cheaper. The current tangent is the kept one with every 50th column halved (softened points);
+// the vector budget is 20. range(0): mesh.
+void BM_KrylovOnKeptLU(benchmark::State& state) {
+  using Clock = std::chrono::steady_clock;
+  const Matrix& kept = denTangent(static_cast<int>(state.range(0)));
+  ecm::mpm::LinearSolver lu(ecm::mpm::defaultLinearSolver());
+  lu.factorize(kept);  // the analysis, once
+  const auto start = Clock::now();
+  lu.factorize(kept);
+  const double factorisation = std::chrono::duration<double>(Clock::now() - start).count();
+  Matrix current = kept;
+  for (Eigen::Index j = 0; j < current.outerSize(); j += 50)
+    for (Matrix::InnerIterator it(current, j); it; ++it) it.valueRef() *= 0.5;
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(kept.rows(), -1.0, 2.0);
+  Eigen::VectorXd x;
+  long vectors = 0;
+  double seconds = 0.0;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    const ecm::mpm::GmresResult r = ecm::mpm::gmres([&](const Eigen::VectorXd& v) -> Eigen::VectorXd { return current * v; },
+                                                    [&](const Eigen::VectorXd& v) { return lu.solve(v); }, b, 1e-3, 20, x);
+    seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    vectors += r.iterations;
+  }
+  const double perVector = seconds / static_cast<double>(std::max(vectors, 1L));
+  state.counters["unknowns"] = static_cast<double>(kept.rows());
+  state.counters["vectors"] = static_cast<double>(vectors) / static_cast<double>(state.iterations());
+  state.counters["ms_per_vector"] = 1e3 * perVector;
+  state.counters["factorisation_ms"] = 1e3 * factorisation;
+  state.counters["break_even"] = factorisation / perVector;
+}
+BENCHMARK(BM_KrylovOnKeptLU)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 #ifdef ECM_HAVE_HYPRE
 // GMRES preconditioned by BoomerAMG (linear_solver: amg) on the same tangents: a solve with the

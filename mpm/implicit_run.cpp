@@ -87,6 +87,7 @@ class ImplicitStepper final : public Stepper {
     if (!controlled && std::abs(book_.progress - from_) <= 1e-12 * from_) book_.progress = from_;
     book_.iterations += last_.totalIterations, book_.halvings += last_.cuts, book_.released += last_.released;
     book_.factorizations += last_.factorizations;
+    book_.krylovIterations += last_.krylovIterations;
     book_.relaxed += last_.relaxed;
     book_.mostIterations = std::max(book_.mostIterations, static_cast<long>(last_.totalIterations));
     book_.linearSolveSeconds += last_.linearSolveSeconds;
@@ -142,6 +143,7 @@ class ImplicitStepper final : public Stepper {
     j["most_newton_iterations_in_a_step"] = book_.mostIterations;
     j["halvings"] = book_.halvings;
     j["factorizations"] = book_.factorizations;
+    j["krylov_iterations"] = book_.krylovIterations;
     j["linear_solve_s"] = book_.linearSolveSeconds;
     j["linear_solver"] = toString(settings_.linearSolver);
     if (const AmgStatistics* amg = solver_.linearSolver().amgStatistics())

@@ -51,7 +51,7 @@ class AmgSolver {
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   const AmgStatistics& statistics() const { return stats_; }
 
-  double tolerance = 1e-8;  // GMRES's relative residual (Newton corrects what is left)
+  double tolerance = 1e-8;  // GMRES's relative residual; the implicit solver sets ImplicitSettings::krylovTolerance
   int maxIterations = 400;
   AmgOptions options;       // read at the next hierarchy's setup
   // Iterations of the last solve.

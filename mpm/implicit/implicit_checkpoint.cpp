@@ -52,6 +52,7 @@ void writeImplicitCheckpoint(const std::filesystem::path& path, const ImplicitSo
   e.put(run.linearSolveSeconds);
   for (const long v : {run.iterations, run.halvings, run.released, run.factorizations, run.mostIterations, run.relaxed})
     e.put(static_cast<std::int64_t>(v));
+  e.put(static_cast<std::int64_t>(run.krylovIterations));
   checkpoint::putOutputs(e, run);
   checkpoint::writeSealed(path, kMagic, kImplicitCheckpointVersion, e.bytes());
 }
@@ -106,6 +107,7 @@ ImplicitBookkeeping readImplicitCheckpoint(const std::filesystem::path& path, Im
   run.linearSolveSeconds = d.get<double>();
   for (long* v : {&run.iterations, &run.halvings, &run.released, &run.factorizations, &run.mostIterations, &run.relaxed})
     *v = static_cast<long>(d.get<std::int64_t>());
+  run.krylovIterations = static_cast<long>(d.get<std::int64_t>());
   checkpoint::getOutputs(d, run);
   if (!d.done()) refuse("corrupted (bytes left after the payload)");
   try {

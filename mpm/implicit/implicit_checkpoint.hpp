@@ -3,7 +3,7 @@
 // run's (mpm/explicit/checkpoint.hpp) but with the implicit solver's state, so a restarted run continues
 // bitwise as the uninterrupted one, on any thread count. Written atomically and durably.
 //
-// Format (version 3; numbers in the machine's byte order):
+// Format (version 4; numbers in the machine's byte order):
 //   header, 32 bytes: "ECMIMPCK" | u32 version | u32 0x01020304 | u64 payload bytes | u64 FNV-1a 64
 //   payload: u64 scene file hash | i32 threads |
 //            solver: f64 time, load factor, next piece (pseudo-time), next opening (mm) | i64 steps | f64 external work, internal
@@ -15,7 +15,7 @@
 //              last opening |
 //            particles (as mpm/explicit/checkpoint.hpp) |
 //            run: f64 progress, next snapshot, peak load, stop_when peak, linear-solve seconds | i64 iterations,
-//              halvings, releases, factorisations, most iterations in a step, relaxed steps |
+//              halvings, releases, factorisations, most iterations in a step, relaxed steps, Krylov iterations |
 //              u64 history.csv bytes, FNV-1a 64, rows | u64 snapshots, f64 their times
 #include <cstdint>
 #include <filesystem>
@@ -27,8 +27,9 @@
 
 namespace ecm::mpm {
 
-// 2: the adaptive opening step, the stop_when peak; 3: the last step's increments (indirect control)
-inline constexpr std::uint32_t kImplicitCheckpointVersion = 3;
+// 2: the adaptive opening step, the stop_when peak; 3: the last step's increments (indirect control);
+// 4: the Krylov iterations on the kept factorisation
+inline constexpr std::uint32_t kImplicitCheckpointVersion = 4;
 
 // What an implicit run carries besides the solver: the run loop's book, the progress and the
 // solver's counters.
@@ -37,6 +38,7 @@ struct ImplicitBookkeeping : RunBook {
   double nextSnapshot = 0.0;   // of the VTU series, in the same unit
   double linearSolveSeconds = 0.0;
   long iterations = 0, halvings = 0, released = 0, factorizations = 0, mostIterations = 0, relaxed = 0;
+  long krylovIterations = 0;  // GMRES vectors on the kept factorisation
 };
 
 // Throws io::OutputError naming the file when it cannot be written (the old one stays).

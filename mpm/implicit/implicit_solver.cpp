@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "mpm/core/errors.hpp"
+#include "mpm/implicit/gmres.hpp"
 #include "mpm/implicit/newton_cycle.hpp"
 #include "mpm/setup/step_setup.hpp"
 #include "mpm/setup/seeding.hpp"
@@ -147,6 +148,7 @@ ImplicitSolver::ImplicitSolver(Scene scene, int threads)
   loads_ = loadStates(setup_.scene, particles_);
   platens_ = platenStates(setup_.scene);
   for (Vec2& v : particles_.velocity) v.setZero();  // quasi-static: no initial velocities
+  lu_.setIterativeTolerance(settings_.krylovTolerance);
 }
 
 Energies ImplicitSolver::energies() const {
@@ -365,6 +367,54 @@ Eigen::VectorXd ImplicitSolver::solve(const Eigen::VectorXd& b, Attempt& a) {
   return x;
 }
 
+bool ImplicitSolver::krylovOn() const {
+  return settings_.krylovIterations > 0 && settings_.linearSolver != LinearSolverKind::Amg;
+}
+
+// Newton's step on the current tangent k, by GMRES preconditioned with the kept factorisation
+// (docs/implicit.md, "Krylov on the kept factorisation"). With a border (indirect control) the
+// system is [k, ku; c, cP] [d; dl] = [r; g], preconditioned by the same border on the kept
+// factorisation: M^-1 [p; q] = [x + dl y; dl], x = K0^-1 p, y = -K0^-1 ku, dl from the border's
+// row. False where GMRES needs more than krylovIterations vectors: then the caller factorises.
+bool ImplicitSolver::krylovStep(const Eigen::SparseMatrix<double>& k, const Border* border, const Eigen::VectorXd& r,
+                                Attempt& a, Eigen::VectorXd& d, double* dl) {
+  const double start = omp_get_wtime();
+  const Eigen::Index n = k.rows();
+  GmresResult result;
+  if (!border) {
+    result = gmres([&](const Eigen::VectorXd& v) -> Eigen::VectorXd { return k * v; },
+                   [&](const Eigen::VectorXd& v) { return lu_.solve(v); }, r, settings_.krylovTolerance,
+                   settings_.krylovIterations, d);
+  } else {
+    // The border's row in force units: its residual is weighed as the forces' (K's mean diagonal).
+    const double scale = k.diagonal().cwiseAbs().mean();
+    const double pivot = border->c.dot(border->y) + border->cPrescribed;
+    Eigen::VectorXd b(n + 1);
+    b << r, scale * border->g;
+    Eigen::VectorXd z;
+    result = gmres(
+        [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+          Eigen::VectorXd w(n + 1);
+          w.head(n) = k * v.head(n) + v[n] * border->ku;
+          w[n] = scale * (border->c.dot(v.head(n)) + border->cPrescribed * v[n]);
+          return w;
+        },
+        [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+          Eigen::VectorXd w(n + 1);
+          const Eigen::VectorXd x = lu_.solve(v.head(n));
+          w[n] = (v[n] / scale - border->c.dot(x)) / pivot;
+          w.head(n) = x + w[n] * border->y;
+          return w;
+        },
+        b, settings_.krylovTolerance, settings_.krylovIterations, z);
+    d = z.head(n);
+    *dl = z[n];
+  }
+  a.report.krylovIterations += result.iterations;
+  a.report.linearSolveSeconds += omp_get_wtime() - start;
+  return result.converged && d.allFinite() && (!dl || std::isfinite(*dl));
+}
+
 bool ImplicitSolver::attempt(double dt, Attempt& a) {
   if (!prepare(dt, nullptr, a)) return false;
   const auto components = a.du.size();
@@ -433,13 +483,23 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       }
       return a.fail(it, relative, NewtonFailure::NotConverged, "Newton did not converge");
     }
-    const bool fresh = refactor || luPattern_ != factorKey();
-    cycle.solvedWithFreshTangent(fresh);
-    if (fresh) {
+    bool fresh = refactor || luPattern_ != factorKey();
+    Eigen::VectorXd onUnknownsStep;
+    if (!fresh && krylovOn()) {  // the current tangent's step on the kept factorisation, or a fresh one
       assembleTangent(setup_, particles_, geometry_, a.trial);
-      if (!factorize(tangentOfTrial(a.trial, a.reduction, a.reducedTangent), a)) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
+      fresh = !krylovStep(tangentOfTrial(a.trial, a.reduction, a.reducedTangent), nullptr, r, a, onUnknownsStep, nullptr);
+      cycle.solvedWithFreshTangent(true);
+    } else {
+      cycle.solvedWithFreshTangent(fresh);
+      if (fresh) assembleTangent(setup_, particles_, geometry_, a.trial);
     }
-    const Eigen::VectorXd delta = toUnknowns(reduction, solve(r, a));
+    if (fresh) {
+      if (!factorize(tangentOfTrial(a.trial, a.reduction, a.reducedTangent), a)) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
+      onUnknownsStep = solve(r, a);
+    } else if (!krylovOn()) {
+      onUnknownsStep = solve(r, a);
+    }
+    const Eigen::VectorXd delta = toUnknowns(reduction, onUnknownsStep);
     if (!delta.allFinite()) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
     // Backtracking line search on |r|: the full step, then halves, the best kept.
     Eigen::VectorXd full = Eigen::VectorXd::Zero(a.du.size());
@@ -462,7 +522,8 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       continue;
     }
     // A stale factorisation that no longer contracts the residual well enough is renewed.
-    refactor = a.reuseRatio <= 0.0 || bestNorm > a.reuseRatio * r.norm();
+    // (With Krylov on the kept factorisation the step is the current tangent's already.)
+    refactor = !krylovOn() && (a.reuseRatio <= 0.0 || bestNorm > a.reuseRatio * r.norm());
     a.du = std::move(bestDu);
     a.trial = std::move(best);
   }
@@ -510,6 +571,15 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
   // first iteration is the predictor): K_ff d_f + (K u^)_f d_lambda = r_f and c . (d_f + d_lambda u^) = d tau - c . du,
   // solved with one factorisation: d_f = a + d_lambda b, a = K_ff^-1 r_f, b = -K_ff^-1 (K u^)_f.
   // K_ff is refactorised as in attempt().
+  const auto addStep = [&](const Eigen::VectorXd& step, double deltaLambda) {
+    if (!reduction) {
+      for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] += step[u];
+    } else {
+      const Eigen::VectorXd onNodes = toUnknowns(reduction, step);
+      for (int u = 0; u < dofs.unknowns(); ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] += onNodes[u];
+    }
+    dLambda += deltaLambda;
+  };
   for (int it = 0;; ++it) {
     Trial& t = a.trial;
     const Eigen::VectorXd du = a.du + dLambda * a.direction;
@@ -548,20 +618,37 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
       a.dTau = dTau;
       return a.fail(it, relative, NewtonFailure::NotConverged, "Newton did not converge");
     }
-    if (it > 0 && r.norm() > a.reuseRatio * previous) refactor = true;
+    if (!krylovOn() && it > 0 && r.norm() > a.reuseRatio * previous) refactor = true;
     previous = r.norm();
-    const bool fresh = refactor || luPattern_ != factorKey();
-    cycle.solvedWithFreshTangent(fresh);
-    if (fresh) {
-      assembleTangent(setup_, particles_, geometry_, t);
-      if (!factorize(tangentOfTrial(t, a.reduction, a.reducedTangent), a)) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
-      refactor = a.reuseRatio <= 0.0;
-    }
+    bool fresh = refactor || luPattern_ != factorKey();
     // y depends on the factorisation and on K u^ only: solved again when either changed (K u^
     // stays put while the driven conditions' points stay elastic).
+    const auto updateY = [&] {
+      if (a.report.factorizations != factorizationsAtY || y.size() != n || ku != kuAtY)
+        y = -solve(ku, a), kuAtY = ku, factorizationsAtY = a.report.factorizations;
+    };
+    if (!fresh && krylovOn()) {  // the current tangent's step on the kept factorisation, or a fresh one
+      updateY();
+      assembleTangent(setup_, particles_, geometry_, t);
+      Eigen::VectorXd d;
+      double deltaLambda = 0.0;
+      const Border border{ku, cUnknowns, cPrescribed, y, g};
+      if (y.allFinite() && krylovStep(tangentOfTrial(t, a.reduction, a.reducedTangent), &border, r, a, d, &deltaLambda)) {
+        cycle.solvedWithFreshTangent(true);
+        addStep(d, deltaLambda);
+        continue;
+      }
+      fresh = true;
+    } else if (fresh) {
+      assembleTangent(setup_, particles_, geometry_, t);
+    }
+    cycle.solvedWithFreshTangent(fresh);
+    if (fresh) {
+      if (!factorize(tangentOfTrial(t, a.reduction, a.reducedTangent), a)) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
+      refactor = a.reuseRatio <= 0.0 && !krylovOn();
+    }
     const Eigen::VectorXd x = solve(r, a);
-    if (a.report.factorizations != factorizationsAtY || y.size() != n || ku != kuAtY)
-      y = -solve(ku, a), kuAtY = ku, factorizationsAtY = a.report.factorizations;
+    updateY();
     if (!x.allFinite() || !y.allFinite()) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
     double cx = 0.0, cy = 0.0;
     for (int u = 0; u < n; ++u) {
@@ -572,13 +659,7 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
     if (!(std::abs(denominator) > 0.0))
       return a.fail(it, relative, NewtonFailure::ControlBlind, "the control does not see the driven conditions (c . du does not change with the load factor)");
     const double deltaLambda = (g - cx) / denominator;
-    if (!reduction) {
-      for (int u = 0; u < n; ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] += x[u] + deltaLambda * y[u];
-    } else {
-      const Eigen::VectorXd onNodes = toUnknowns(reduction, x + deltaLambda * y);
-      for (int u = 0; u < dofs.unknowns(); ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] += onNodes[u];
-    }
-    dLambda += deltaLambda;
+    addStep(x + deltaLambda * y, deltaLambda);
   }
 }
 
@@ -733,6 +814,7 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
                   "a point passed its onset by " + std::to_string(a.trial.onsetOvershoot) + " of its strength");
     total.totalIterations += a.report.totalIterations;
     total.factorizations += a.report.factorizations;
+    total.krylovIterations += a.report.krylovIterations;
     total.linearSolveSeconds += a.report.linearSolveSeconds;
     if (ok) {
       commit(a, control ? 0.0 : piece);
@@ -820,6 +902,7 @@ ImplicitStepReport ImplicitSolver::stepInPieces(const IndirectControl* control, 
     total.iterations = std::max(total.iterations, r.iterations);
     total.totalIterations += r.totalIterations;
     total.factorizations += r.factorizations;
+    total.krylovIterations += r.krylovIterations;
     total.cuts += r.cuts;
     total.residual = std::max(total.residual, r.residual);
     total.released += r.released;

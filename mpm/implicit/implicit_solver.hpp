@@ -40,6 +40,7 @@ struct ImplicitStepReport {
   long released = 0;        // snap-backs released at the material level in the step
   int relaxed = 0;          // 1: kept with a residual between tolerance and acceptTolerance
   double linearSolveSeconds = 0.0;
+  long krylovIterations = 0;  // GMRES vectors on the kept factorisation (ImplicitSettings::krylovIterations)
 };
 
 class ImplicitSolver {
@@ -130,6 +131,18 @@ class ImplicitSolver {
   // Factorises K over the current unknowns into lu_ (false: singular), timing it in `a`.
   bool factorize(const Eigen::SparseMatrix<double>& k, Attempt& a);
   Eigen::VectorXd solve(const Eigen::VectorXd& b, Attempt& a);
+  // Indirect control's border of the step's system: [K, ku; c, cPrescribed] [d; dl] = [r; g], and
+  // y = -K0^-1 ku on the kept factorisation K0.
+  struct Border {
+    const Eigen::VectorXd& ku;
+    const Eigen::VectorXd& c;
+    double cPrescribed;
+    const Eigen::VectorXd& y;
+    double g;
+  };
+  bool krylovOn() const;
+  bool krylovStep(const Eigen::SparseMatrix<double>& k, const Border* border, const Eigen::VectorXd& r, Attempt& a,
+                  Eigen::VectorXd& d, double* dl);
 
   LinearSolver lu_;
   long luPattern_ = -1;    // factorKey() of the factorised tangent (-1: none)

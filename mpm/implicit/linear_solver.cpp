@@ -92,7 +92,7 @@ const AmgStatistics* LinearSolver::amgStatistics() const {
 void LinearSolver::setComponents([[maybe_unused]] std::vector<int> components) {
 #ifdef ECM_HAVE_HYPRE
   if (kind_ == LinearSolverKind::Amg) {
-    if (!amg_) amg_ = std::make_unique<AmgSolver>();
+    if (!amg_) amg_ = std::make_unique<AmgSolver>(), amg_->tolerance = iterativeTolerance_;
     amg_->setComponents(std::move(components));
   }
 #endif
@@ -101,7 +101,7 @@ void LinearSolver::setComponents([[maybe_unused]] std::vector<int> components) {
 bool LinearSolver::factorize(const Eigen::SparseMatrix<double>& k) {
 #ifdef ECM_HAVE_HYPRE
   if (kind_ == LinearSolverKind::Amg) {
-    if (!amg_) amg_ = std::make_unique<AmgSolver>();
+    if (!amg_) amg_ = std::make_unique<AmgSolver>(), amg_->tolerance = iterativeTolerance_;
     amg_->setMatrix(k);
     return true;
   }

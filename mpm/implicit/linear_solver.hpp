@@ -32,12 +32,16 @@ class LinearSolver {
   // Each unknown's displacement component (0 x, 1 y), for the AMG solver; the LUs do not need it.
   void setComponents(std::vector<int> components);
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
+  // The relative residual to which the AMG solver's GMRES solves (ImplicitSettings::krylovTolerance;
+  // the LUs solve exactly).
+  void setIterativeTolerance(double tolerance) { iterativeTolerance_ = tolerance; }
   // The AMG solver's counts (linear_solver: amg), null for the LUs.
   const AmgStatistics* amgStatistics() const;
 
  private:
   LinearSolverKind kind_;
   bool analysed_ = false;
+  double iterativeTolerance_ = 1e-8;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
   std::unique_ptr<UmfpackFactors> umfpack_;
 #ifdef ECM_HAVE_HYPRE

@@ -81,6 +81,14 @@ struct ImplicitSettings {
   // iteration, and refactorised at the current iterate otherwise ("Fewer factorisations"); the
   // predictor of a step takes the last factorisation. 0: a factorisation at every iteration.
   double reuseRatio = 0.1;
+  // Newton's step on the current tangent by GMRES preconditioned with the kept factorisation
+  // ("Krylov on the kept factorisation"): at most krylovIterations Krylov vectors, a fresh
+  // factorisation where they do not reach krylovTolerance. 0: the kept factorisation's step as it
+  // is (modified Newton). The LU solvers only: AMG is GMRES already.
+  int krylovIterations = 8;
+  // The relative residual to which GMRES solves a Newton step's system (inexact Newton: Newton's
+  // own tolerance is on the forces), with the kept factorisation or with AMG ("The AMG solver").
+  double krylovTolerance = 1e-3;
   // Indirect control: a step's Newton starts from the last step's increments, scaled to its
   // opening ("The extrapolated start"); false: from du = 0.
   bool extrapolate = true;
