@@ -485,16 +485,18 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
     }
     bool fresh = refactor || luPattern_ != factorKey();
     Eigen::VectorXd onUnknownsStep;
+    const Eigen::SparseMatrix<double>* current = nullptr;  // the tangent over the unknowns, once reduced
     if (!fresh && krylovOn()) {  // the current tangent's step on the kept factorisation, or a fresh one
       assembleTangent(setup_, particles_, geometry_, a.trial);
-      fresh = !krylovStep(tangentOfTrial(a.trial, a.reduction, a.reducedTangent), nullptr, r, a, onUnknownsStep, nullptr);
+      current = &tangentOfTrial(a.trial, a.reduction, a.reducedTangent);
+      fresh = !krylovStep(*current, nullptr, r, a, onUnknownsStep, nullptr);
       cycle.solvedWithFreshTangent(true);
     } else {
       cycle.solvedWithFreshTangent(fresh);
       if (fresh) assembleTangent(setup_, particles_, geometry_, a.trial);
     }
     if (fresh) {
-      if (!factorize(tangentOfTrial(a.trial, a.reduction, a.reducedTangent), a)) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
+      if (!factorize(current ? *current : tangentOfTrial(a.trial, a.reduction, a.reducedTangent), a)) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
       onUnknownsStep = solve(r, a);
     } else if (!krylovOn()) {
       onUnknownsStep = solve(r, a);
@@ -627,13 +629,15 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
       if (a.report.factorizations != factorizationsAtY || y.size() != n || ku != kuAtY)
         y = -solve(ku, a), kuAtY = ku, factorizationsAtY = a.report.factorizations;
     };
+    const Eigen::SparseMatrix<double>* current = nullptr;  // the tangent over the unknowns, once reduced
     if (!fresh && krylovOn()) {  // the current tangent's step on the kept factorisation, or a fresh one
       updateY();
       assembleTangent(setup_, particles_, geometry_, t);
       Eigen::VectorXd d;
       double deltaLambda = 0.0;
       const Border border{ku, cUnknowns, cPrescribed, y, g};
-      if (y.allFinite() && krylovStep(tangentOfTrial(t, a.reduction, a.reducedTangent), &border, r, a, d, &deltaLambda)) {
+      current = &tangentOfTrial(t, a.reduction, a.reducedTangent);
+      if (y.allFinite() && krylovStep(*current, &border, r, a, d, &deltaLambda)) {
         cycle.solvedWithFreshTangent(true);
         addStep(d, deltaLambda);
         continue;
@@ -644,7 +648,7 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
     }
     cycle.solvedWithFreshTangent(fresh);
     if (fresh) {
-      if (!factorize(tangentOfTrial(t, a.reduction, a.reducedTangent), a)) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
+      if (!factorize(current ? *current : tangentOfTrial(t, a.reduction, a.reducedTangent), a)) return a.fail(it, relative, NewtonFailure::Singular, "the tangent is singular");
       refactor = a.reuseRatio <= 0.0 && !krylovOn();
     }
     const Eigen::VectorXd x = solve(r, a);
