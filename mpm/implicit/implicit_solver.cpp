@@ -102,6 +102,7 @@ struct ImplicitSolver::Attempt {
   Trial trial;                           // at du
   ImplicitStepReport report;
   SnapBackPolicy snapBack = SnapBackPolicy::Stop;
+  bool cutsPredictor = true;             // a predictor far past the onset limit ends the attempt at once
   double reuseRatio = 0.1;               // ImplicitOptions::reuseRatio, 0 after a failed attempt (Newton proper)
   int maxIterations = 25;                // ImplicitOptions::maxIterations, 4 times that at the last halving
   bool lastResort = false;               // the last halving: no early stall test, its whole maxIterations
@@ -455,7 +456,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
   }
   evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, a.trial);
   // A predictor far past the onset limit is not worth converging: the piece is cut at once.
-  if (a.snapBack != SnapBackPolicy::Release && a.trial.failed == SIZE_MAX && a.trial.onsetOvershoot > 1.5 * settings_.onsetOvershoot)
+  if (a.cutsPredictor && a.trial.failed == SIZE_MAX && a.trial.onsetOvershoot > 1.5 * settings_.onsetOvershoot)
     return a.fail(0, 0.0, NewtonFailure::OnsetOvershoot, "the predictor carried a point past its onset by " + std::to_string(a.trial.onsetOvershoot) + " of its strength");
   bool refactor = a.reuseRatio <= 0.0;
   NewtonHistory history;  // a stalled attempt keeps its best iterate
@@ -795,18 +796,20 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
   if (std::abs(remaining) <= 1.5 * std::abs(piece)) piece = remaining;
   // Attempts: the piece with the kept factorisation, then (if Newton did not converge) the same
   // piece factorising at every iteration, then halves of it, the last with 4 times the iterations.
-  // A material snap-back gets one halving; if it persists, the scene's snap_back decides: release
-  // lets the band fail onto its stable branch (as explicit runs do), stop ends the run there.
+  // A material snap-back under release: the band fails onto its stable branch wherever the piece's
+  // converged state puts it past its limit, as in explicit runs, with no halving first. Under stop it
+  // gets one halving and, if it persists, ends the run (docs/implicit.md, "Load steps").
   const bool release = setup_.scene.solver.snapBack == SnapBackPolicy::Release;
   bool retried = false;
-  int snapBackCuts = 0;  // halvings because a point snapped back: after the first, it persists
+  int snapBackCuts = 0;  // halvings because a point snapped back (stop): after the first, it persists
   for (int cuts = 0;; ++cuts) {
     Attempt a;
     const bool finest = cuts >= settings_.maxHalvings;
     a.reuseRatio = cuts > 0 || retried ? 0.0 : settings_.reuseRatio;
     a.maxIterations = finest ? 4 * settings_.maxIterations : settings_.maxIterations;
     a.lastResort = finest;
-    a.snapBack = release && (finest || snapBackCuts > 0) ? SnapBackPolicy::Release : SnapBackPolicy::Stop;
+    a.snapBack = release ? SnapBackPolicy::Release : SnapBackPolicy::Stop;
+    a.cutsPredictor = !(release && finest);
     bool ok = control ? attemptIndirect(*control, piece, a) : attempt(piece, a);
     // A piece whose Newton (proper) stalls below the acceptance tolerance is kept: its residual
     // is carried into the next step's equilibrium (docs/implicit.md, "Load steps").

@@ -59,9 +59,10 @@ class ImplicitSolver {
   // adaptive step of a run. The piece follows the Newton iterations and the onset overshoot of the
   // last one, not below largest / 2^maxHalvings. A piece whose Newton does not converge is tried
   // again factorising at every iteration, then halved up to maxHalvings times; the last try has 4
-  // times the iterations. A material snap-back gets one halving; if it persists, the scene's
-  // snap_back decides: release (the band fails onto its stable branch, counted) or stop (a
-  // SimulationError of kind SnapBack naming the point). Throws SimulationError as step() does.
+  // times the iterations. A material snap-back follows the scene's snap_back: release (the band
+  // fails onto its stable branch where the converged state asks for it, counted, no halving) or
+  // stop (one halving; if it persists, a SimulationError of kind SnapBack naming the point).
+  // Throws SimulationError as step() does.
   ImplicitStepReport advance(double largest, double remaining);
   ImplicitStepReport advance(const IndirectControl& control, double largest, double remaining);
   double loadFactor() const { return lambda_; }
