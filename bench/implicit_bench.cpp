@@ -103,7 +103,7 @@ void BM_Umfpack(benchmark::State& state) {
   state.counters["unknowns"] = static_cast<double>(k.rows());
   state.counters["bytes_per_unknown"] = held / static_cast<double>(k.rows());
 }
-BENCHMARK(BM_Umfpack)->Args({0, 0})->Args({0, 1})->Args({0, 2})->Args({1, 0})->Args({1, 1})->Args({1, 2})->Args({2, 1})->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Umfpack)->Args({0, 0})->Args({0, 1})->Args({0, 2})->Args({1, 0})->Args({1, 1})->Args({1, 2})->Args({2, 1})->Args({2, 2})->Unit(benchmark::kMillisecond);
 
 void BM_UmfpackSolve(benchmark::State& state) {
   const Matrix& k = denTangent(static_cast<int>(state.range(0)));
