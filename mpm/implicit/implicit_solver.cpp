@@ -102,7 +102,6 @@ struct ImplicitSolver::Attempt {
   Trial trial;                           // at du
   ImplicitStepReport report;
   SnapBackPolicy snapBack = SnapBackPolicy::Stop;
-  bool cutsPredictor = true;             // a predictor far past the onset limit ends the attempt at once
   double reuseRatio = 0.1;               // ImplicitOptions::reuseRatio, 0 after a failed attempt (Newton proper)
   int maxIterations = 25;                // ImplicitOptions::maxIterations, 4 times that at the last halving
   bool lastResort = false;               // the last halving: no early stall test, its whole maxIterations
@@ -455,8 +454,10 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
     }
   }
   evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, a.trial);
-  // A predictor far past the onset limit is not worth converging: the piece is cut at once.
-  if (a.cutsPredictor && a.trial.failed == SIZE_MAX && a.trial.onsetOvershoot > 1.5 * settings_.onsetOvershoot)
+  // A predictor far past the onset limit is not worth converging: the piece is cut at once (not on
+  // the last halving under release, which has no smaller piece to go to).
+  const bool lastUnderRelease = a.lastResort && a.snapBack == SnapBackPolicy::Release;
+  if (!lastUnderRelease && a.trial.failed == SIZE_MAX && a.trial.onsetOvershoot > 1.5 * settings_.onsetOvershoot)
     return a.fail(0, 0.0, NewtonFailure::OnsetOvershoot, "the predictor carried a point past its onset by " + std::to_string(a.trial.onsetOvershoot) + " of its strength");
   bool refactor = a.reuseRatio <= 0.0;
   NewtonHistory history;  // a stalled attempt keeps its best iterate
@@ -809,7 +810,6 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
     a.maxIterations = finest ? 4 * settings_.maxIterations : settings_.maxIterations;
     a.lastResort = finest;
     a.snapBack = release ? SnapBackPolicy::Release : SnapBackPolicy::Stop;
-    a.cutsPredictor = !(release && finest);
     bool ok = control ? attemptIndirect(*control, piece, a) : attempt(piece, a);
     // A piece whose Newton (proper) stalls below the acceptance tolerance is kept: its residual
     // is carried into the next step's equilibrium (docs/implicit.md, "Load steps").
