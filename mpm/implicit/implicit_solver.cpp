@@ -16,6 +16,7 @@
 #include "mpm/core/errors.hpp"
 #include "mpm/implicit/gmres.hpp"
 #include "mpm/implicit/newton_cycle.hpp"
+#include "mpm/implicit/newton_ends.hpp"
 #include "mpm/setup/step_setup.hpp"
 #include "mpm/setup/seeding.hpp"
 
@@ -32,16 +33,6 @@ double prescribedIncrement(const ComponentCondition& c, double t, double dt) {
     case Prescribed::Displacement: return c.history(t + dt) - c.history(t);
   }
   return NAN;
-}
-
-// Newton proper (a factorisation at every iteration) has stalled when its relative residual did
-// not halve over the last kStallWindow iterations (docs/implicit.md, "Load steps"): converging,
-// it halves it at every iteration or two. (With a kept factorisation the test cost more
-// halvings than it saved: left to max_iterations there, as is the last halving's try.)
-constexpr int kStallWindow = 6;
-bool stalled(const std::vector<double>& residuals) {
-  const std::size_t n = residuals.size();
-  return n > kStallWindow && residuals[n - 1] > 0.5 * residuals[n - 1 - kStallWindow];
 }
 
 // Why an attempt at a piece failed: what the step loop does next depends on it.
@@ -69,10 +60,10 @@ struct NewtonHistory {
     residuals.push_back(relative);
     if (eligible && relative < bestRelative) bestRelative = relative, bestDu = du, bestDLambda = dLambda;
   }
-  // Newton ends at `iteration`: out of iterations, or Newton proper (reuse 0) has stalled, which
-  // the last resort does not test.
+  // Newton ends at `iteration`: out of iterations, diverged, or Newton proper (reuse 0) has
+  // stalled, which the last resort does not test.
   bool ends(int iteration, int maxIterations, double reuseRatio, bool lastResort) const {
-    return iteration >= maxIterations || (reuseRatio <= 0.0 && !lastResort && stalled(residuals));
+    return iteration >= maxIterations || diverged(residuals) || (reuseRatio <= 0.0 && !lastResort && stalled(residuals));
   }
   // An earlier iterate was better than the last one (`relative`).
   bool hasBetterThan(double relative) const { return bestDu.size() > 0 && bestRelative < relative; }

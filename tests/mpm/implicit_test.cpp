@@ -14,6 +14,7 @@
 #include "mpm/implicit/amg_solver.hpp"
 #include "mpm/implicit/implicit_solver.hpp"
 #include "mpm/implicit/newton_cycle.hpp"
+#include "mpm/implicit/newton_ends.hpp"
 #include "mpm/scene/scene_yaml.hpp"
 #include "test_scenes.hpp"
 
@@ -173,6 +174,29 @@ TEST(Implicit, TheCycleGuardFlagsThePointsThatSwitchWhileTheResidualGrows) {
   }
   guard.observe(c, 1e-4);  // the kSettled-th fall
   EXPECT_EQ(guard.secantFlags(), nullptr);
+}
+
+// When Newton gives up early (mpm/implicit/newton_ends.hpp). The residuals are those of load step
+// 193 of the coarse second-band DEN on a path moved by round-off (docs/implicit.md, "Load
+// steps"): Newton with the kept factorisation stalled near 2.4e-3, came back from a spike of 0.17
+// (67 times its lowest), then jumped to 0.82 (350 times): diverged there, not at the spike. A
+// load-controlled start (1.0 at du = 0, then 0.6) has not diverged: it never was lower.
+TEST(Implicit, NewtonEndsWhereItLeavesItsBasinOrStalls) {
+  std::vector<double> r{7.941e-3, 9.927e-2, 7.234e-3, 2.620e-3, 2.603e-3, 2.599e-3, 1.735e-1};
+  EXPECT_FALSE(diverged(r)) << "the spike, 67 times the lowest";
+  for (const double next : {6.847e-3, 2.594e-3, 2.370e-3, 2.348e-3}) {
+    r.push_back(next);
+    EXPECT_FALSE(diverged(r)) << next;
+  }
+  r.push_back(8.245e-1);
+  EXPECT_TRUE(diverged(r));
+  EXPECT_FALSE(diverged({1.0}));
+  EXPECT_FALSE(diverged({1.0, 0.6}));
+  EXPECT_FALSE(diverged({1e-3, 0.4})) << "below kDivergedResidual";
+  // Stalled: the residual did not halve over kStallWindow iterations.
+  EXPECT_TRUE(stalled({1e-3, 9e-4, 8e-4, 7e-4, 6e-4, 6e-4, 5.5e-4}));
+  EXPECT_FALSE(stalled({1e-3, 9e-4, 8e-4, 7e-4, 6e-4, 6e-4, 4.9e-4}));
+  EXPECT_FALSE(stalled({1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3})) << "fewer than kStallWindow + 1 iterates";
 }
 
 TEST(Implicit, TheAssembledTangentIsTheDerivativeOfTheInternalForce) {
