@@ -118,6 +118,46 @@ void BM_UmfpackSolve(benchmark::State& state) {
 BENCHMARK(BM_UmfpackSolve)->Args({0, 0})->Args({0, 2})->Args({1, 0})->Args({1, 2})->Args({2, 0})->Unit(benchmark::kMillisecond);
 #endif
 
+#ifdef ECM_HAVE_UMFPACK
+// The kept factors by runs (mpm/implicit/factor_runs.hpp; docs/implicit.md): a preconditioning
+// solve with the copy against UMFPACK's own solve, the copy's cost (its first solve less a later
+// one) and the heap it holds per unknown. range(0): mesh.
+void BM_FactorRuns(benchmark::State& state) {
+  using Clock = std::chrono::steady_clock;
+  const Matrix& k = denTangent(static_cast<int>(state.range(0)));
+  ecm::mpm::LinearSolver lu(ecm::mpm::LinearSolverKind::Umfpack);
+  lu.setCopyAfter(1);
+  lu.factorize(k);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(k.rows(), -1.0, 2.0);
+  const Eigen::VectorXd exact = lu.solve(b);
+  auto t = Clock::now();
+  for (int i = 0; i < 5; ++i) benchmark::DoNotOptimize(lu.solve(b).data());
+  const double umfpack = std::chrono::duration<double>(Clock::now() - t).count() / 5.0;
+  const auto heapBefore = mallinfo2().uordblks;
+  t = Clock::now();
+  const Eigen::VectorXd first = lu.precondition(b);
+  const double firstSolve = std::chrono::duration<double>(Clock::now() - t).count();
+  const double held = static_cast<double>(mallinfo2().uordblks) - static_cast<double>(heapBefore);
+  double seconds = 0.0;
+  long solves = 0;
+  for (auto _ : state) {
+    t = Clock::now();
+    benchmark::DoNotOptimize(lu.precondition(b).data());
+    seconds += std::chrono::duration<double>(Clock::now() - t).count();
+    ++solves;
+  }
+  const double copySolve = seconds / static_cast<double>(std::max(solves, 1L));
+  const auto n = static_cast<double>(k.rows());
+  state.counters["unknowns"] = n;
+  state.counters["umfpack_solve_ms"] = 1e3 * umfpack;
+  state.counters["copy_solve_ms"] = 1e3 * copySolve;
+  state.counters["copy_ms"] = 1e3 * (firstSolve - copySolve);
+  state.counters["copy_bytes_per_unknown"] = held / n;
+  state.counters["relative_difference"] = (first - exact).norm() / exact.norm();
+}
+BENCHMARK(BM_FactorRuns)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+#endif
+
 // Krylov on the kept factorisation (ImplicitSettings::krylovIterations; docs/implicit.md): what a
 // GMRES vector costs (a solve with the kept LU, a product with K, the orthogonalisation) against
 // one factorisation, through the solver's own LinearSolver. Their ratio, `break_even`, is the

@@ -146,6 +146,8 @@ class ImplicitStepper final : public Stepper {
     j["krylov_iterations"] = book_.krylovIterations;
     j["linear_solve_s"] = book_.linearSolveSeconds;
     j["linear_solver"] = toString(settings_.linearSolver);
+    if (settings_.linearSolver == LinearSolverKind::Umfpack)
+      j["factor_copies"] = solver_.linearSolver().factorCopies();  // by runs, of this process's factorisations
     if (const AmgStatistics* amg = solver_.linearSolver().amgStatistics())
       j["amg"] = {{"hierarchies", amg->setups},         {"solves", amg->solves},
                   {"gmres_iterations", amg->iterations}, {"failed_solves", amg->failedSolves},

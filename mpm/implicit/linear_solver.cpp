@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 
+#include "mpm/implicit/factor_runs.hpp"
 #ifdef ECM_HAVE_UMFPACK
 #include "mpm/implicit/umfpack_library.hpp"
 #endif
@@ -56,6 +57,9 @@ struct UmfpackFactors {
   }
   bool factorise(const Eigen::SparseMatrix<double>& matrix) {
     if (numeric) lib.freeNumeric(&numeric);
+    runs.reset();
+    preconditionings = 0;
+    copyTried = false;
     k = matrix;
     k.makeCompressed();
     return lib.numeric(k.outerIndexPtr(), k.innerIndexPtr(), k.valuePtr(), symbolic, &numeric, control.data(),
@@ -66,6 +70,68 @@ struct UmfpackFactors {
     lib.solve(UMFPACK_A, k.outerIndexPtr(), k.innerIndexPtr(), k.valuePtr(), x.data(), b.data(), numeric,
               control.data(), info.data());
     return x;
+  }
+
+  // The factors copied by runs (mpm/implicit/factor_runs.hpp), made at the copyAfter-th
+  // preconditioning solve of a factorisation (docs/implicit.md, "The kept factors by runs"). The
+  // default, the first, keeps restarts bitwise: a restarted run factorises the saved tangent
+  // again, and its copy is the one the uninterrupted run made.
+  std::unique_ptr<FactorRuns> runs;
+  int preconditionings = 0;
+  bool copyTried = false;  // of this factorisation (a copy that failed is not tried again)
+  std::vector<double> work;
+  long copies = 0;
+
+  Eigen::VectorXd precondition(const Eigen::VectorXd& b, int copyAfter) {
+    if (!copyTried && copyAfter > 0 && ++preconditionings >= copyAfter) copyTried = true, runs = copy();
+    if (!runs) return solve(b);
+    Eigen::VectorXd x;
+    solveByRuns(*runs, b, x, work);
+    return x;
+  }
+
+  // L by rows, then U by columns (one triangle at a time: the arrays UMFPACK fills are the copy's
+  // largest transient). Null where UMFPACK refuses, or a line does not end on its diagonal.
+  static bool endsOnDiagonal(const std::vector<int>& pointers, const std::vector<int>& indices) {
+    for (std::size_t i = 0; i + 1 < pointers.size(); ++i)
+      if (pointers[i + 1] <= pointers[i] || indices[static_cast<std::size_t>(pointers[i + 1] - 1)] != static_cast<int>(i)) return false;
+    return true;
+  }
+  std::unique_ptr<FactorRuns> copy() {
+    int lnz = 0, unz = 0, rows = 0, columns = 0, diagonalEntries = 0;
+    if (lib.getLunz(&lnz, &unz, &rows, &columns, &diagonalEntries, numeric) != UMFPACK_OK || rows != columns)
+      return nullptr;
+    auto f = std::make_unique<FactorRuns>();
+    const auto n = static_cast<std::size_t>(rows);
+    f->n = rows;
+    f->rowOfPivot.resize(n);
+    f->columnOfPivot.resize(n);
+    f->rowScale.resize(n);
+    std::vector<double> diagonal(n);
+    int reciprocal = 0;
+    {
+      std::vector<int> pointers(n + 1), indices(static_cast<std::size_t>(lnz));
+      std::vector<double> values(static_cast<std::size_t>(lnz));
+      if (lib.getNumeric(pointers.data(), indices.data(), values.data(), nullptr, nullptr, nullptr, f->rowOfPivot.data(),
+                         f->columnOfPivot.data(), diagonal.data(), &reciprocal, f->rowScale.data(), numeric) != UMFPACK_OK)
+        return nullptr;
+      if (!endsOnDiagonal(pointers, indices)) return nullptr;
+      f->lower = runsOf(rows, pointers.data(), indices.data(), values.data(), true);
+    }
+    {
+      std::vector<int> pointers(n + 1), indices(static_cast<std::size_t>(unz));
+      std::vector<double> values(static_cast<std::size_t>(unz));
+      if (lib.getNumeric(nullptr, nullptr, nullptr, pointers.data(), indices.data(), values.data(), nullptr, nullptr,
+                         nullptr, nullptr, nullptr, numeric) != UMFPACK_OK)
+        return nullptr;
+      if (!endsOnDiagonal(pointers, indices)) return nullptr;
+      f->upper = runsOf(rows, pointers.data(), indices.data(), values.data(), true);
+    }
+    if (!reciprocal)
+      for (double& s : f->rowScale) s = 1.0 / s;  // UMFPACK divides row i by rowScale[i]
+    f->diagonal = std::move(diagonal);
+    ++copies;
+    return f;
   }
 };
 #else
@@ -133,6 +199,20 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) {
   if (kind_ == LinearSolverKind::Umfpack) return umfpack_->solve(b);
 #endif
   return lu_.solve(b);
+}
+
+Eigen::VectorXd LinearSolver::precondition(const Eigen::VectorXd& b) {
+#ifdef ECM_HAVE_UMFPACK
+  if (kind_ == LinearSolverKind::Umfpack) return umfpack_->precondition(b, copyAfter_);
+#endif
+  return solve(b);
+}
+
+long LinearSolver::factorCopies() const {
+#ifdef ECM_HAVE_UMFPACK
+  if (umfpack_) return umfpack_->copies;
+#endif
+  return 0;
 }
 
 }  // namespace ecm::mpm

@@ -32,6 +32,14 @@ class LinearSolver {
   // Each unknown's displacement component (0 x, 1 y), for the AMG solver; the LUs do not need it.
   void setComponents(std::vector<int> components);
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
+  // A solve for preconditioning: once the factorisation has served copyAfter such solves, with
+  // UMFPACK's factors copied by runs (mpm/implicit/factor_runs.hpp; the same factors, a faster
+  // solve); solve() before that, and with the other solvers.
+  Eigen::VectorXd precondition(const Eigen::VectorXd& b);
+  // 0: never copy (every preconditioning solve is UMFPACK's own).
+  void setCopyAfter(int solves) { copyAfter_ = solves; }
+  // How many factorisations were copied by runs.
+  long factorCopies() const;
   // The relative residual to which the AMG solver's GMRES solves (ImplicitSettings::krylovTolerance;
   // the LUs solve exactly).
   void setIterativeTolerance(double tolerance) { iterativeTolerance_ = tolerance; }
@@ -42,6 +50,7 @@ class LinearSolver {
   LinearSolverKind kind_;
   bool analysed_ = false;
   double iterativeTolerance_ = 1e-8;
+  int copyAfter_ = 1;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
   std::unique_ptr<UmfpackFactors> umfpack_;
 #ifdef ECM_HAVE_HYPRE

@@ -28,6 +28,8 @@ UmfpackLibrary load() {
   symbol(lib.solve, "umfpack_di_solve");
   symbol(lib.freeSymbolic, "umfpack_di_free_symbolic");
   symbol(lib.freeNumeric, "umfpack_di_free_numeric");
+  symbol(lib.getLunz, "umfpack_di_get_lunz");
+  symbol(lib.getNumeric, "umfpack_di_get_numeric");
   return lib;  // the handle stays open for the process's life
 }
 

@@ -14,6 +14,8 @@ struct UmfpackLibrary {
   decltype(&umfpack_di_solve) solve;
   decltype(&umfpack_di_free_symbolic) freeSymbolic;
   decltype(&umfpack_di_free_numeric) freeNumeric;
+  decltype(&umfpack_di_get_lunz) getLunz;
+  decltype(&umfpack_di_get_numeric) getNumeric;
 };
 
 // The library, loaded once; throws std::runtime_error naming it and the loader's reason when it

@@ -4,9 +4,11 @@
 // the BLAS, LAPACK and Fortran run-time it pulls in, 3.6 MB resident).
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <fstream>
 #include <string>
 
+#include "mpm/implicit/factor_runs.hpp"
 #include "mpm/implicit/linear_solver.hpp"
 #include "mpm/explicit/solver.hpp"
 #include "test_scenes.hpp"
@@ -53,6 +55,63 @@ TEST(LinearSolver, EachSolverSolvesASmallUnsymmetricSystemAndRefusesASingularOne
     LinearSolver fresh(kind);
     EXPECT_FALSE(fresh.factorize(singular)) << toString(kind);
   }
+}
+
+// A 2D convection-diffusion stencil on an m x m grid: unsymmetric, with fill in its LU and runs
+// of every length in its factors' lines.
+Eigen::SparseMatrix<double> convectionDiffusion(int m) {
+  const int n = m * m;
+  std::vector<Eigen::Triplet<double>> entries;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < m; ++i) {
+      const int row = j * m + i;
+      entries.emplace_back(row, row, 4.5 + 0.01 * row);
+      if (i > 0) entries.emplace_back(row, row - 1, -1.6);
+      if (i + 1 < m) entries.emplace_back(row, row + 1, -0.4);
+      if (j > 0) entries.emplace_back(row, row - m, -1.3);
+      if (j + 1 < m) entries.emplace_back(row, row + m, -0.7);
+    }
+  Eigen::SparseMatrix<double> k(n, n);
+  k.setFromTriplets(entries.begin(), entries.end());
+  return k;
+}
+
+// UMFPACK's factors copied by runs (mpm/implicit/factor_runs.hpp): made at the copyAfter-th
+// preconditioning solve, it solves as UMFPACK does, to round-off (this matrix's condition number
+// is near 10: 1e-13 has room), and a new factorisation drops it.
+TEST(LinearSolver, TheFactorsCopiedByRunsSolveAsUmfpackDoes) {
+  if (!available(LinearSolverKind::Umfpack)) GTEST_SKIP() << "this build has no UMFPACK";
+  LinearSolver lu(LinearSolverKind::Umfpack);
+  lu.setCopyAfter(3);
+  const Eigen::SparseMatrix<double> k = convectionDiffusion(20);
+  const Eigen::VectorXd x = Eigen::VectorXd::LinSpaced(k.rows(), -1.0, 2.0);
+  const Eigen::VectorXd b = k * x;
+  ASSERT_TRUE(lu.factorize(k));
+  for (int solve = 1; solve <= 2; ++solve) {
+    EXPECT_LT((lu.precondition(b) - x).norm(), 1e-13 * x.norm());  // UMFPACK's own, before the copy
+    EXPECT_EQ(lu.factorCopies(), 0);
+  }
+  for (int solve = 3; solve <= 4; ++solve) {
+    EXPECT_LT((lu.precondition(b) - x).norm(), 1e-13 * x.norm());
+    EXPECT_EQ(lu.factorCopies(), 1);
+  }
+  const Eigen::SparseMatrix<double> k2 = 2.0 * k;
+  ASSERT_TRUE(lu.factorize(k2));
+  EXPECT_LT((lu.precondition(b) - 0.5 * x).norm(), 1e-13 * x.norm());  // not the old copy's answer
+  EXPECT_EQ(lu.factorCopies(), 1);
+}
+
+// The runs of a triangle's lines, without the diagonal each line ends with: a row [0, 1, 3, 4,
+// 5 | 6] has the runs 0-1 and 3-5, and the values follow them in order.
+TEST(LinearSolver, ARunCoversConsecutiveIndices) {
+  const std::vector<std::int32_t> pointers{0, 1, 7}, indices{0, 0, 1, 3, 4, 5, 1};
+  const std::vector<double> values{1.0, 10.0, 11.0, 13.0, 14.0, 15.0, 1.0};
+  const RunTriangle t = runsOf(2, pointers.data(), indices.data(), values.data(), true);
+  EXPECT_EQ(t.firstRun, (std::vector<std::int32_t>{0, 0, 2}));
+  EXPECT_EQ(t.runStart, (std::vector<std::int32_t>{0, 3}));
+  EXPECT_EQ(t.runLength, (std::vector<std::int32_t>{2, 3}));
+  EXPECT_EQ(t.firstValue, (std::vector<std::int32_t>{0, 0, 5}));
+  EXPECT_EQ(t.values, (std::vector<double>{10.0, 11.0, 13.0, 14.0, 15.0}));
 }
 
 // GMRES with BoomerAMG (docs/implicit.md, "The AMG solver"): the same small system to its
