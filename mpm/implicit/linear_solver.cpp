@@ -90,13 +90,14 @@ struct UmfpackFactors {
     return x;
   }
 
-  // L by rows, then U by columns (one triangle at a time: the arrays UMFPACK fills are the copy's
-  // largest transient). Null where UMFPACK refuses, or a line does not end on its diagonal.
+  // Whether every line (a row of L, a column of U) ends on its diagonal, as runsOf expects.
   static bool endsOnDiagonal(const std::vector<int>& pointers, const std::vector<int>& indices) {
     for (std::size_t i = 0; i + 1 < pointers.size(); ++i)
       if (pointers[i + 1] <= pointers[i] || indices[static_cast<std::size_t>(pointers[i + 1] - 1)] != static_cast<int>(i)) return false;
     return true;
   }
+  // L by rows, then U by columns (one triangle at a time: the arrays UMFPACK fills are the copy's
+  // largest transient). Null where UMFPACK refuses, or a line does not end on its diagonal.
   std::unique_ptr<FactorRuns> copy() {
     int lnz = 0, unz = 0, rows = 0, columns = 0, diagonalEntries = 0;
     if (lib.getLunz(&lnz, &unz, &rows, &columns, &diagonalEntries, numeric) != UMFPACK_OK || rows != columns)
