@@ -7,16 +7,7 @@ namespace {
 using Run = Eigen::Map<Eigen::VectorXd>;
 using ConstRun = Eigen::Map<const Eigen::VectorXd>;
 
-std::size_t bytesOf(const RunTriangle& t) {
-  return 4 * (t.firstRun.size() + t.firstValue.size() + t.runStart.size() + t.runLength.size()) + 8 * t.values.size();
-}
-
 }  // namespace
-
-std::size_t FactorRuns::bytes() const {
-  return 4 * (rowOfPivot.size() + columnOfPivot.size()) + 8 * (rowScale.size() + diagonal.size()) + bytesOf(lower) +
-         bytesOf(upper);
-}
 
 RunTriangle runsOf(int n, const std::int32_t* pointers, const std::int32_t* indices, const double* values,
                    bool lastIsDiagonal) {

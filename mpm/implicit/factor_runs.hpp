@@ -31,7 +31,6 @@ struct FactorRuns {
   RunTriangle lower;  // the rows of L left of the diagonal
   RunTriangle upper;  // the columns of U above the diagonal
   std::vector<double> diagonal;  // U's
-  std::size_t bytes() const;
 };
 
 // The runs of a compressed triangle's lines (pointers n + 1, each line's indices sorted), with
