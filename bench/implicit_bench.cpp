@@ -121,12 +121,14 @@ BENCHMARK(BM_UmfpackSolve)->Args({0, 0})->Args({0, 2})->Args({1, 0})->Args({1, 2
 #ifdef ECM_HAVE_UMFPACK
 // The kept factors by runs (mpm/implicit/factor_runs.hpp; docs/implicit.md): a preconditioning
 // solve with the copy against UMFPACK's own solve, the copy's cost (its first solve less a later
-// one) and the heap it holds per unknown. range(0): mesh.
+// one; again for a second factorisation, whose copy checks the split of the lines for two threads
+// instead of finding it) and the heap it holds per unknown. range(0): mesh; range(1): threads.
 void BM_FactorRuns(benchmark::State& state) {
   using Clock = std::chrono::steady_clock;
   const Matrix& k = denTangent(static_cast<int>(state.range(0)));
   ecm::mpm::LinearSolver lu(ecm::mpm::LinearSolverKind::Umfpack);
   lu.setCopyAfter(1);
+  lu.setThreads(static_cast<int>(state.range(1)));
   lu.factorize(k);
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(k.rows(), -1.0, 2.0);
   const Eigen::VectorXd exact = lu.solve(b);
@@ -147,15 +149,21 @@ void BM_FactorRuns(benchmark::State& state) {
     ++solves;
   }
   const double copySolve = seconds / static_cast<double>(std::max(solves, 1L));
+  // A later factorisation of the same analysis: its copy checks the split found above.
+  lu.factorize(k);
+  t = Clock::now();
+  benchmark::DoNotOptimize(lu.precondition(b).data());
+  const double again = std::chrono::duration<double>(Clock::now() - t).count() - copySolve;
   const auto n = static_cast<double>(k.rows());
   state.counters["unknowns"] = n;
   state.counters["umfpack_solve_ms"] = 1e3 * umfpack;
   state.counters["copy_solve_ms"] = 1e3 * copySolve;
   state.counters["copy_ms"] = 1e3 * (firstSolve - copySolve);
+  state.counters["copy_again_ms"] = 1e3 * again;
   state.counters["copy_bytes_per_unknown"] = held / n;
   state.counters["relative_difference"] = (first - exact).norm() / exact.norm();
 }
-BENCHMARK(BM_FactorRuns)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FactorRuns)->ArgsProduct({{0, 1, 2}, {1, 2}})->Unit(benchmark::kMillisecond);
 #endif
 
 // Krylov on the kept factorisation (ImplicitSettings::krylovIterations; docs/implicit.md): what a

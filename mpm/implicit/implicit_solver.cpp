@@ -140,6 +140,7 @@ ImplicitSolver::ImplicitSolver(Scene scene, int threads)
   platens_ = platenStates(setup_.scene);
   for (Vec2& v : particles_.velocity) v.setZero();  // quasi-static: no initial velocities
   lu_.setIterativeTolerance(settings_.krylovTolerance);
+  lu_.setThreads(setup_.threads);
 }
 
 Energies ImplicitSolver::energies() const {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
+#include <optional>
 
 #include "mpm/implicit/factor_runs.hpp"
 #ifdef ECM_HAVE_UMFPACK
@@ -39,6 +41,7 @@ struct UmfpackFactors {
     // Measured in bench/implicit_bench.cpp (docs/implicit.md).
     control[UMFPACK_STRATEGY] = UMFPACK_STRATEGY_SYMMETRIC;
     control[UMFPACK_IRSTEP] = 0;
+    if (std::getenv("ECM_UMF_METIS")) control[UMFPACK_ORDERING] = UMFPACK_ORDERING_METIS;  // EXPERIMENT
   }
   ~UmfpackFactors() {
     if (numeric) lib.freeNumeric(&numeric);
@@ -48,6 +51,7 @@ struct UmfpackFactors {
   UmfpackFactors& operator=(const UmfpackFactors&) = delete;
 
   bool analyse(const Eigen::SparseMatrix<double>& pattern) {
+    split.reset();
     if (numeric) lib.freeNumeric(&numeric);
     if (symbolic) lib.freeSymbolic(&symbolic);
     Eigen::SparseMatrix<double> m = ones(pattern);
@@ -77,16 +81,17 @@ struct UmfpackFactors {
   // default, the first, keeps restarts bitwise: a restarted run factorises the saved tangent
   // again, and its copy is the one the uninterrupted run made.
   std::unique_ptr<FactorRuns> runs;
+  std::optional<TwoWaySplit> split;  // the last copy's, while the analysis stands
   int preconditionings = 0;
   bool copyTried = false;  // of this factorisation (a copy that failed is not tried again)
   std::vector<double> work;
   long copies = 0;
 
-  Eigen::VectorXd precondition(const Eigen::VectorXd& b, int copyAfter) {
-    if (!copyTried && copyAfter > 0 && ++preconditionings >= copyAfter) copyTried = true, runs = copy();
+  Eigen::VectorXd precondition(const Eigen::VectorXd& b, int copyAfter, int threads) {
+    if (!copyTried && copyAfter > 0 && ++preconditionings >= copyAfter) copyTried = true, runs = copy(threads);
     if (!runs) return solve(b);
     Eigen::VectorXd x;
-    solveByRuns(*runs, b, x, work);
+    solveByRuns(*runs, b, x, work, threads);
     return x;
   }
 
@@ -96,9 +101,11 @@ struct UmfpackFactors {
       if (pointers[i + 1] <= pointers[i] || indices[static_cast<std::size_t>(pointers[i + 1] - 1)] != static_cast<int>(i)) return false;
     return true;
   }
-  // L by rows, then U by columns (one triangle at a time: the arrays UMFPACK fills are the copy's
-  // largest transient). Null where UMFPACK refuses, or a line does not end on its diagonal.
-  std::unique_ptr<FactorRuns> copy() {
+  // L by rows and U by columns, each triangle on a thread of its own where there are two (UMFPACK
+  // only reads its numeric object; each call fills arrays of its own), else one after the other
+  // (those arrays are the copy's largest transient). Null where UMFPACK refuses, or a line does
+  // not end on its diagonal.
+  std::unique_ptr<FactorRuns> copy(int threads) {
     int lnz = 0, unz = 0, rows = 0, columns = 0, diagonalEntries = 0;
     if (lib.getLunz(&lnz, &unz, &rows, &columns, &diagonalEntries, numeric) != UMFPACK_OK || rows != columns)
       return nullptr;
@@ -108,29 +115,30 @@ struct UmfpackFactors {
     f->rowOfPivot.resize(n);
     f->columnOfPivot.resize(n);
     f->rowScale.resize(n);
-    std::vector<double> diagonal(n);
+    f->diagonal.resize(n);
     int reciprocal = 0;
-    {
-      std::vector<int> pointers(n + 1), indices(static_cast<std::size_t>(lnz));
-      std::vector<double> values(static_cast<std::size_t>(lnz));
-      if (lib.getNumeric(pointers.data(), indices.data(), values.data(), nullptr, nullptr, nullptr, f->rowOfPivot.data(),
-                         f->columnOfPivot.data(), diagonal.data(), &reciprocal, f->rowScale.data(), numeric) != UMFPACK_OK)
-        return nullptr;
-      if (!endsOnDiagonal(pointers, indices)) return nullptr;
-      f->lower = runsOf(rows, pointers.data(), indices.data(), values.data(), true);
-    }
-    {
-      std::vector<int> pointers(n + 1), indices(static_cast<std::size_t>(unz));
-      std::vector<double> values(static_cast<std::size_t>(unz));
-      if (lib.getNumeric(nullptr, nullptr, nullptr, pointers.data(), indices.data(), values.data(), nullptr, nullptr,
-                         nullptr, nullptr, nullptr, numeric) != UMFPACK_OK)
-        return nullptr;
-      if (!endsOnDiagonal(pointers, indices)) return nullptr;
-      f->upper = runsOf(rows, pointers.data(), indices.data(), values.data(), true);
-    }
+    bool copied[2] = {false, false};
+    const auto triangle = [&](int which) {
+      const std::size_t entries = static_cast<std::size_t>(which == 0 ? lnz : unz);
+      std::vector<int> pointers(n + 1), indices(entries);
+      std::vector<double> values(entries);
+      const int status =
+          which == 0 ? lib.getNumeric(pointers.data(), indices.data(), values.data(), nullptr, nullptr, nullptr,
+                                      f->rowOfPivot.data(), f->columnOfPivot.data(), f->diagonal.data(), &reciprocal,
+                                      f->rowScale.data(), numeric)
+                     : lib.getNumeric(nullptr, nullptr, nullptr, pointers.data(), indices.data(), values.data(), nullptr,
+                                      nullptr, nullptr, nullptr, nullptr, numeric);
+      if (status != UMFPACK_OK || !endsOnDiagonal(pointers, indices)) return;
+      (which == 0 ? f->lower : f->upper) = runsOf(rows, pointers.data(), indices.data(), values.data(), true);
+      copied[which] = true;
+    };
+#pragma omp parallel for num_threads(std::min(threads, 2)) schedule(static, 1)
+    for (int which = 0; which < 2; ++which) triangle(which);
+    if (!copied[0] || !copied[1]) return nullptr;
     if (!reciprocal)
       for (double& s : f->rowScale) s = 1.0 / s;  // UMFPACK divides row i by rowScale[i]
-    f->diagonal = std::move(diagonal);
+    f->split = splitOf(*f, split ? &*split : nullptr);
+    split = f->split;
     ++copies;
     return f;
   }
@@ -204,7 +212,7 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) {
 
 Eigen::VectorXd LinearSolver::precondition(const Eigen::VectorXd& b) {
 #ifdef ECM_HAVE_UMFPACK
-  if (kind_ == LinearSolverKind::Umfpack) return umfpack_->precondition(b, copyAfter_);
+  if (kind_ == LinearSolverKind::Umfpack) return umfpack_->precondition(b, copyAfter_, threads_);
 #endif
   return solve(b);
 }

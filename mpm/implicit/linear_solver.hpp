@@ -38,6 +38,9 @@ class LinearSolver {
   Eigen::VectorXd precondition(const Eigen::VectorXd& b);
   // 0: never copy (every preconditioning solve is UMFPACK's own).
   void setCopyAfter(int solves) { copyAfter_ = solves; }
+  // Threads for the solves with the copied factors (mpm/implicit/factor_runs.hpp): two where there
+  // are two or more, and the factors split.
+  void setThreads(int threads) { threads_ = threads; }
   // How many factorisations were copied by runs.
   long factorCopies() const;
   // The relative residual to which the AMG solver's GMRES solves (ImplicitSettings::krylovTolerance;
@@ -51,6 +54,7 @@ class LinearSolver {
   bool analysed_ = false;
   double iterativeTolerance_ = 1e-8;
   int copyAfter_ = 1;
+  int threads_ = 1;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
   std::unique_ptr<UmfpackFactors> umfpack_;
 #ifdef ECM_HAVE_HYPRE

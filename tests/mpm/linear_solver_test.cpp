@@ -114,6 +114,77 @@ TEST(LinearSolver, ARunCoversConsecutiveIndices) {
   EXPECT_EQ(t.values, (std::vector<double>{10.0, 11.0, 13.0, 14.0, 15.0}));
 }
 
+// Factors by hand, P = Q = R = I: lines 0 and 1 joined by L(1, 0), line 2 alone, lines 3 and 4
+// joined to both by L(3, 0), L(3, 2), U(1, 4) and U(2, 4); unit diagonal of L, U's diagonal 2 to 6.
+FactorRuns handMadeFactors() {
+  FactorRuns f;
+  f.n = 5;
+  f.rowOfPivot = f.columnOfPivot = {0, 1, 2, 3, 4};
+  f.rowScale.assign(5, 1.0);
+  f.diagonal = {2.0, 3.0, 4.0, 5.0, 6.0};
+  // L by rows and U by columns, each line ending on its diagonal entry (left out by runsOf).
+  const std::vector<std::int32_t> lp{0, 1, 3, 4, 7, 8}, li{0, 0, 1, 2, 0, 2, 3, 4};
+  const std::vector<double> lv{1, 0.5, 1, 1, -0.25, 0.75, 1, 1};
+  const std::vector<std::int32_t> up{0, 1, 2, 3, 4, 7}, ui{0, 1, 2, 3, 1, 2, 4};
+  const std::vector<double> uv{2, 3, 4, 5, 1.5, -2.0, 6};
+  f.lower = runsOf(5, lp.data(), li.data(), lv.data(), true);
+  f.upper = runsOf(5, up.data(), ui.data(), uv.data(), true);
+  return f;
+}
+
+// The split of the lines for two threads (mpm/implicit/factor_runs.hpp), on the factors above:
+// lines 0-1 and 2 are the two groups, 3-4 the serial tail. Entries per line plus one: 1, 2, 1, 3,
+// 3 (10 in all); a tail from line 3 costs the longer group's 3 plus the tail's 6, every other tail
+// 10. The answer on two threads is bitwise the one-thread answer, and both are L U's inverse
+// applied (to 1e-15: entries of order 1). A factorisation with an entry across the groups
+// (L(2, 1)) does not keep the split.
+TEST(LinearSolver, TwoThreadsSolveTheCopiedFactorsBitwiseAsOne) {
+  FactorRuns f = handMadeFactors();
+  f.split = splitOf(f);
+  EXPECT_EQ(f.split.serialFrom, 3);
+  EXPECT_EQ(f.split.groups[0], (std::vector<std::int32_t>{0, 1}));
+  EXPECT_EQ(f.split.groups[1], (std::vector<std::int32_t>{2}));
+  EXPECT_TRUE(holds(f.split, f));
+  Eigen::MatrixXd l = Eigen::MatrixXd::Identity(5, 5), u = Eigen::MatrixXd::Zero(5, 5);
+  l(1, 0) = 0.5, l(3, 0) = -0.25, l(3, 2) = 0.75;
+  for (int i = 0; i < 5; ++i) u(i, i) = 2.0 + i;
+  u(1, 4) = 1.5, u(2, 4) = -2.0;
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(5, -1.0, 3.0);
+  const Eigen::VectorXd exact = (l * u).lu().solve(b);
+  Eigen::VectorXd one, two;
+  std::vector<double> work;
+  solveByRuns(f, b, one, work, 1);
+  solveByRuns(f, b, two, work, 2);
+  EXPECT_TRUE((one.array() == two.array()).all());
+  EXPECT_LT((one - exact).norm(), 1e-15 * exact.norm());
+
+  FactorRuns crossed = handMadeFactors();
+  const std::vector<std::int32_t> lp{0, 1, 3, 5, 8, 9}, li{0, 0, 1, 1, 2, 0, 2, 3, 4};
+  const std::vector<double> lv{1, 0.5, 1, 0.1, 1, -0.25, 0.75, 1, 1};
+  crossed.lower = runsOf(5, lp.data(), li.data(), lv.data(), true);
+  EXPECT_FALSE(holds(f.split, crossed));
+  const TwoWaySplit fresh = splitOf(crossed, &f.split);
+  EXPECT_TRUE(fresh.empty() || holds(fresh, crossed));
+}
+
+// The same on UMFPACK's factors of a 2D stencil (their lines do split: two groups below a tail),
+// through the solver: a preconditioning solve on two threads is bitwise the one on one.
+TEST(LinearSolver, TwoThreadsPreconditionBitwiseAsOneOnUmfpacksFactors) {
+  if (!available(LinearSolverKind::Umfpack)) GTEST_SKIP() << "this build has no UMFPACK";
+  const Eigen::SparseMatrix<double> k = convectionDiffusion(40);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(k.rows(), -1.0, 2.0);
+  Eigen::VectorXd answers[2];
+  for (const int threads : {1, 2}) {
+    LinearSolver lu(LinearSolverKind::Umfpack);
+    lu.setThreads(threads);
+    ASSERT_TRUE(lu.factorize(k));
+    answers[threads - 1] = lu.precondition(b);
+    EXPECT_EQ(lu.factorCopies(), 1);
+    EXPECT_LT((k * answers[threads - 1] - b).norm(), 1e-12 * b.norm());
+  }
+  EXPECT_TRUE((answers[0].array() == answers[1].array()).all());
+}
+
 // GMRES with BoomerAMG (docs/implicit.md, "The AMG solver"): the same small system to its
 // tolerance (1e-8 relative residual; this matrix's condition number is below 10, so the error is
 // below 1e-7), with and without the unknowns' components, and again after new values (the
