@@ -375,7 +375,7 @@ bool ImplicitSolver::krylovStep(const Eigen::SparseMatrix<double>& k, const Bord
   GmresResult result;
   if (!border) {
     result = gmres([&](const Eigen::VectorXd& v) -> Eigen::VectorXd { return k * v; },
-                   [&](const Eigen::VectorXd& v) { return lu_.precondition(v); }, r, settings_.krylovTolerance,
+                   [&](const Eigen::VectorXd& v) { return lu_.solve(v); }, r, settings_.krylovTolerance,
                    settings_.krylovIterations, d);
   } else {
     // The border's row in force units: its residual is weighed as the forces' (K's mean diagonal).
@@ -393,7 +393,7 @@ bool ImplicitSolver::krylovStep(const Eigen::SparseMatrix<double>& k, const Bord
         },
         [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
           Eigen::VectorXd w(n + 1);
-          const Eigen::VectorXd x = lu_.precondition(v.head(n));
+          const Eigen::VectorXd x = lu_.solve(v.head(n));
           w[n] = (v[n] / scale - border->c.dot(x)) / pivot;
           w.head(n) = x + w[n] * border->y;
           return w;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdlib>
 #include <optional>
 
 #include "mpm/implicit/factor_runs.hpp"
@@ -41,7 +40,6 @@ struct UmfpackFactors {
     // Measured in bench/implicit_bench.cpp (docs/implicit.md).
     control[UMFPACK_STRATEGY] = UMFPACK_STRATEGY_SYMMETRIC;
     control[UMFPACK_IRSTEP] = 0;
-    if (std::getenv("ECM_UMF_METIS")) control[UMFPACK_ORDERING] = UMFPACK_ORDERING_METIS;  // EXPERIMENT
   }
   ~UmfpackFactors() {
     if (numeric) lib.freeNumeric(&numeric);
@@ -62,34 +60,34 @@ struct UmfpackFactors {
   bool factorise(const Eigen::SparseMatrix<double>& matrix) {
     if (numeric) lib.freeNumeric(&numeric);
     runs.reset();
-    preconditionings = 0;
+    solves = 0;
     copyTried = false;
     k = matrix;
     k.makeCompressed();
     return lib.numeric(k.outerIndexPtr(), k.innerIndexPtr(), k.valuePtr(), symbolic, &numeric, control.data(),
                        info.data()) == UMFPACK_OK;
   }
-  Eigen::VectorXd solve(const Eigen::VectorXd& b) {
+  Eigen::VectorXd umfpackSolve(const Eigen::VectorXd& b) {
     Eigen::VectorXd x(b.size());
     lib.solve(UMFPACK_A, k.outerIndexPtr(), k.innerIndexPtr(), k.valuePtr(), x.data(), b.data(), numeric,
               control.data(), info.data());
     return x;
   }
 
-  // The factors copied by runs (mpm/implicit/factor_runs.hpp), made at the copyAfter-th
-  // preconditioning solve of a factorisation (docs/implicit.md, "The kept factors by runs"). The
-  // default, the first, keeps restarts bitwise: a restarted run factorises the saved tangent
-  // again, and its copy is the one the uninterrupted run made.
+  // The factors copied by runs (mpm/implicit/factor_runs.hpp), made at the copyAfter-th solve
+  // with a factorisation (docs/implicit.md, "The kept factors by runs"); the solves before it are
+  // UMFPACK's own. The default, the first, keeps restarts bitwise: a restarted run factorises the
+  // saved tangent again, and its copy is the one the uninterrupted run made.
   std::unique_ptr<FactorRuns> runs;
   std::optional<TwoWaySplit> split;  // the last copy's, while the analysis stands
-  int preconditionings = 0;
+  int solves = 0;
   bool copyTried = false;  // of this factorisation (a copy that failed is not tried again)
   std::vector<double> work;
   long copies = 0;
 
-  Eigen::VectorXd precondition(const Eigen::VectorXd& b, int copyAfter, int threads) {
-    if (!copyTried && copyAfter > 0 && ++preconditionings >= copyAfter) copyTried = true, runs = copy(threads);
-    if (!runs) return solve(b);
+  Eigen::VectorXd solve(const Eigen::VectorXd& b, int copyAfter, int threads) {
+    if (!copyTried && copyAfter > 0 && ++solves >= copyAfter) copyTried = true, runs = copy(threads);
+    if (!runs) return umfpackSolve(b);
     Eigen::VectorXd x;
     solveByRuns(*runs, b, x, work, threads);
     return x;
@@ -205,16 +203,9 @@ Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) {
   }
 #endif
 #ifdef ECM_HAVE_UMFPACK
-  if (kind_ == LinearSolverKind::Umfpack) return umfpack_->solve(b);
+  if (kind_ == LinearSolverKind::Umfpack) return umfpack_->solve(b, copyAfter_, threads_);
 #endif
   return lu_.solve(b);
-}
-
-Eigen::VectorXd LinearSolver::precondition(const Eigen::VectorXd& b) {
-#ifdef ECM_HAVE_UMFPACK
-  if (kind_ == LinearSolverKind::Umfpack) return umfpack_->precondition(b, copyAfter_, threads_);
-#endif
-  return solve(b);
 }
 
 long LinearSolver::factorCopies() const {

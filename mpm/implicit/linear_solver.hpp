@@ -31,12 +31,11 @@ class LinearSolver {
   void forgetPattern();
   // Each unknown's displacement component (0 x, 1 y), for the AMG solver; the LUs do not need it.
   void setComponents(std::vector<int> components);
+  // x = K^-1 b. With UMFPACK, from the copyAfter-th solve with a factorisation on, by its factors
+  // copied by runs (mpm/implicit/factor_runs.hpp: the same factors, a faster solve); with AMG, to
+  // the iterative tolerance.
   Eigen::VectorXd solve(const Eigen::VectorXd& b);
-  // A solve for preconditioning: once the factorisation has served copyAfter such solves, with
-  // UMFPACK's factors copied by runs (mpm/implicit/factor_runs.hpp; the same factors, a faster
-  // solve); solve() before that, and with the other solvers.
-  Eigen::VectorXd precondition(const Eigen::VectorXd& b);
-  // 0: never copy (every preconditioning solve is UMFPACK's own).
+  // 0: never copy (every solve is UMFPACK's own).
   void setCopyAfter(int solves) { copyAfter_ = solves; }
   // Threads for the solves with the copied factors (mpm/implicit/factor_runs.hpp): two where there
   // are two or more, and the factors split.

@@ -77,8 +77,8 @@ Eigen::SparseMatrix<double> convectionDiffusion(int m) {
 }
 
 // UMFPACK's factors copied by runs (mpm/implicit/factor_runs.hpp): made at the copyAfter-th
-// preconditioning solve, it solves as UMFPACK does, to round-off (this matrix's condition number
-// is near 10: 1e-13 has room), and a new factorisation drops it.
+// solve with a factorisation, it solves as UMFPACK does, to round-off (this matrix's condition
+// number is near 10: 1e-13 has room), and a new factorisation drops it.
 TEST(LinearSolver, TheFactorsCopiedByRunsSolveAsUmfpackDoes) {
   if (!available(LinearSolverKind::Umfpack)) GTEST_SKIP() << "this build has no UMFPACK";
   LinearSolver lu(LinearSolverKind::Umfpack);
@@ -88,16 +88,16 @@ TEST(LinearSolver, TheFactorsCopiedByRunsSolveAsUmfpackDoes) {
   const Eigen::VectorXd b = k * x;
   ASSERT_TRUE(lu.factorize(k));
   for (int solve = 1; solve <= 2; ++solve) {
-    EXPECT_LT((lu.precondition(b) - x).norm(), 1e-13 * x.norm());  // UMFPACK's own, before the copy
+    EXPECT_LT((lu.solve(b) - x).norm(), 1e-13 * x.norm());  // UMFPACK's own, before the copy
     EXPECT_EQ(lu.factorCopies(), 0);
   }
   for (int solve = 3; solve <= 4; ++solve) {
-    EXPECT_LT((lu.precondition(b) - x).norm(), 1e-13 * x.norm());
+    EXPECT_LT((lu.solve(b) - x).norm(), 1e-13 * x.norm());
     EXPECT_EQ(lu.factorCopies(), 1);
   }
   const Eigen::SparseMatrix<double> k2 = 2.0 * k;
   ASSERT_TRUE(lu.factorize(k2));
-  EXPECT_LT((lu.precondition(b) - 0.5 * x).norm(), 1e-13 * x.norm());  // not the old copy's answer
+  EXPECT_LT((lu.solve(b) - 0.5 * x).norm(), 1e-13 * x.norm());  // not the old copy's answer
   EXPECT_EQ(lu.factorCopies(), 1);
 }
 
@@ -168,7 +168,7 @@ TEST(LinearSolver, TwoThreadsSolveTheCopiedFactorsBitwiseAsOne) {
 }
 
 // The same on UMFPACK's factors of a 2D stencil (their lines do split: two groups below a tail),
-// through the solver: a preconditioning solve on two threads is bitwise the one on one.
+// through the solver: a solve on two threads is bitwise the one on one.
 TEST(LinearSolver, TwoThreadsPreconditionBitwiseAsOneOnUmfpacksFactors) {
   if (!available(LinearSolverKind::Umfpack)) GTEST_SKIP() << "this build has no UMFPACK";
   const Eigen::SparseMatrix<double> k = convectionDiffusion(40);
@@ -178,7 +178,7 @@ TEST(LinearSolver, TwoThreadsPreconditionBitwiseAsOneOnUmfpacksFactors) {
     LinearSolver lu(LinearSolverKind::Umfpack);
     lu.setThreads(threads);
     ASSERT_TRUE(lu.factorize(k));
-    answers[threads - 1] = lu.precondition(b);
+    answers[threads - 1] = lu.solve(b);
     EXPECT_EQ(lu.factorCopies(), 1);
     EXPECT_LT((k * answers[threads - 1] - b).norm(), 1e-12 * b.norm());
   }
