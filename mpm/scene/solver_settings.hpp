@@ -85,7 +85,7 @@ struct ImplicitSettings {
   // ("Krylov on the kept factorisation"): at most krylovIterations Krylov vectors, a fresh
   // factorisation where they do not reach krylovTolerance. 0: the kept factorisation's step as it
   // is (modified Newton). The LU solvers only: AMG is GMRES already.
-  int krylovIterations = 8;
+  int krylovIterations = 16;  // docs/implicit.md, "Two threads on the kept factors": 8 until the solves got cheaper
   // The relative residual to which GMRES solves a Newton step's system (inexact Newton: Newton's
   // own tolerance is on the forces), with the kept factorisation or with AMG ("The AMG solver").
   double krylovTolerance = 1e-3;
