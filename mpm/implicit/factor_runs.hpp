@@ -1,7 +1,7 @@
 #pragma once
 // A sparse LU's factors copied line by line (the rows of L, the columns of U), each line stored
-// as runs of consecutive indices: the preconditioner's solve of Krylov on the kept factorisation
-// (docs/implicit.md, "The kept factors by runs"). The same factors in double precision, only
+// as runs of consecutive indices: every solve with a factorisation, Krylov's preconditioning
+// solves on the kept one above all (docs/implicit.md, "The kept factors by runs"). The same factors in double precision, only
 // stored for the solve: a run is read as one contiguous vector (a dot product for a row of L, an
 // update for a column of U) and takes one index, not one per entry.
 #include <Eigen/Core>

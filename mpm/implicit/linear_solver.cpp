@@ -135,8 +135,10 @@ struct UmfpackFactors {
     if (!copied[0] || !copied[1]) return nullptr;
     if (!reciprocal)
       for (double& s : f->rowScale) s = 1.0 / s;  // UMFPACK divides row i by rowScale[i]
-    f->split = splitOf(*f, split ? &*split : nullptr);
-    split = f->split;
+    if (threads >= 2) {  // (one thread has no use for the split)
+      f->split = splitOf(*f, split ? &*split : nullptr);
+      split = f->split;
+    }
     ++copies;
     return f;
   }
