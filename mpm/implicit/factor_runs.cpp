@@ -6,13 +6,6 @@
 
 namespace ecm::mpm {
 
-namespace {
-
-using Run = Eigen::Map<Eigen::VectorXd>;
-using ConstRun = Eigen::Map<const Eigen::VectorXd>;
-
-}  // namespace
-
 RunTriangle runsOf(int n, const std::int32_t* pointers, const std::int32_t* indices, const double* values,
                    bool lastIsDiagonal) {
   RunTriangle t;
@@ -38,6 +31,9 @@ RunTriangle runsOf(int n, const std::int32_t* pointers, const std::int32_t* indi
 }
 
 namespace {
+
+using Run = Eigen::Map<Eigen::VectorXd>;
+using ConstRun = Eigen::Map<const Eigen::VectorXd>;
 
 // Joins the lines that share an entry of L or U (union by work, path halving).
 class LineComponents {
