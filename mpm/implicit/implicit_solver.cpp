@@ -97,6 +97,20 @@ struct ImplicitSolver::Attempt {
   int maxIterations = 25;                // ImplicitOptions::maxIterations, 4 times that at the last halving
   bool lastResort = false;               // the last halving: no early stall test, its whole maxIterations
   bool stalled = false;                  // Newton ran out of iterations; du and trial hold its last iterate
+  // The last halving under release keeps each point's release for the rest of the attempt
+  // (docs/implicit.md, "Releases kept within a step").
+  bool keepReleases = false;
+  ReleasedStarts kept;
+  const ReleasedStarts* keptStarts() const { return keepReleases ? &kept : nullptr; }
+  // The points the attempt released: those of its trial, and with kept releases those of its
+  // earlier iterates too, each counted once.
+  long releases() const {
+    if (!keepReleases) return trial.released;
+    long count = static_cast<long>(kept.starts.size());
+    for (const auto& [i, start] : trial.releases)
+      if (kept.of.empty() || kept.of[i] < 0) ++count;
+    return count;
+  }
   UpdateStatus failedStatus = UpdateStatus::Converged;  // of the material update that failed
   // Why it failed: the iteration, the relative residual and the particle (SIZE_MAX: none).
   int failedIteration = 0;
@@ -445,7 +459,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       for (int u = 0; u < dofs.unknowns(); ++u) a.du[dofs.component[static_cast<std::size_t>(u)]] += onNodes[u];
     }
   }
-  evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, a.trial);
+  evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, a.trial, nullptr, nullptr, a.keptStarts());
   // A predictor far past the onset limit is not worth converging: the piece is cut at once (not on
   // the last halving under release, which has no smaller piece to go to).
   const bool lastUnderRelease = a.lastResort && a.snapBack == SnapBackPolicy::Release;
@@ -456,6 +470,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
   CycleGuard cycle;       // mpm/implicit/newton_cycle.hpp
   for (int it = 0;; ++it) {
     if (a.trial.failed != SIZE_MAX) return a.failInMaterial(it, a.trial, setup_, particles_);
+    if (a.keepReleases) keepReleases(a.trial, particles_.size(), a.kept);
     double relative = 0.0;
     const Eigen::VectorXd r = residualOf(a.trial, relative);
     a.report.totalIterations++;
@@ -471,9 +486,10 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       a.report.iterations = it;
       if (history.hasBetterThan(relative)) {
         a.du = history.bestDu;
-        evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, a.trial, nullptr, cycle.secantFlags());
+        evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, a.trial, nullptr, cycle.secantFlags(), a.keptStarts());
         if (a.trial.failed != SIZE_MAX) return a.failInMaterial(it, a.trial, setup_, particles_);
         relative = history.bestRelative;
+        if (a.keepReleases) residualOf(a.trial, relative);  // releases kept since that iterate start points elsewhere
       }
       return a.fail(it, relative, NewtonFailure::NotConverged, "Newton did not converge");
     }
@@ -506,7 +522,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
     for (int tries = 0; tries < 6; ++tries, alpha *= 0.5) {
       Trial t;
       const Eigen::VectorXd du = a.du + alpha * full;
-      evaluateTrial(setup_, particles_, geometry_, du, false, a.snapBack, t, nullptr, cycle.secantFlags());
+      evaluateTrial(setup_, particles_, geometry_, du, false, a.snapBack, t, nullptr, cycle.secantFlags(), a.keptStarts());
       if (t.failed != SIZE_MAX) continue;
       double rel = 0.0;
       const double norm = residualOf(t, rel).norm();
@@ -514,7 +530,7 @@ bool ImplicitSolver::attempt(double dt, Attempt& a) {
       if (norm <= (1.0 - 1e-4 * alpha) * r.norm()) break;
     }
     if (!std::isfinite(bestNorm)) {  // every length failed in the material: report the full step's failure
-      evaluateTrial(setup_, particles_, geometry_, a.du + full, false, a.snapBack, a.trial, nullptr, cycle.secantFlags());
+      evaluateTrial(setup_, particles_, geometry_, a.du + full, false, a.snapBack, a.trial, nullptr, cycle.secantFlags(), a.keptStarts());
       continue;
     }
     // A stale factorisation that no longer contracts the residual well enough is renewed.
@@ -579,9 +595,10 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
   for (int it = 0;; ++it) {
     Trial& t = a.trial;
     const Eigen::VectorXd du = a.du + dLambda * a.direction;
-    evaluateTrial(setup_, particles_, geometry_, du, false, a.snapBack, t, &a.direction, cycle.secantFlags());
+    evaluateTrial(setup_, particles_, geometry_, du, false, a.snapBack, t, &a.direction, cycle.secantFlags(), a.keptStarts());
     a.report.totalIterations++;
     if (t.failed != SIZE_MAX) return a.failInMaterial(it, t, setup_, particles_);
+    if (a.keepReleases) keepReleases(t, particles_.size(), a.kept);
     if (it == 0 && !extrapolated) a.startForce = t.internalForce;  // du = 0
     const Eigen::VectorXd r = onUnknowns(dofs, reduction, [&](std::int32_t k) { return a.external[k] - t.internalForce[k]; });
     const Eigen::VectorXd ku = onUnknowns(dofs, reduction, [&](std::int32_t k) { return t.tangentTimesDirection[k]; });
@@ -605,8 +622,12 @@ bool ImplicitSolver::attemptIndirect(const IndirectControl& control, double dTau
         dLambda = history.bestDLambda;
         a.du = history.bestDu + dLambda * a.direction;
         relative = history.bestRelative;
-        evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, t, &a.direction, cycle.secantFlags());
+        evaluateTrial(setup_, particles_, geometry_, a.du, false, a.snapBack, t, &a.direction, cycle.secantFlags(), a.keptStarts());
         if (t.failed != SIZE_MAX) return a.failInMaterial(it, t, setup_, particles_);
+        if (a.keepReleases) {  // releases kept since that iterate start points elsewhere: its residual now
+          const Eigen::VectorXd rBest = onUnknowns(dofs, reduction, [&](std::int32_t k) { return a.external[k] - t.internalForce[k]; });
+          relative = rBest.norm() / std::max({a.external.norm(), t.internalForce.norm(), 1e-300});
+        }
       } else {
         a.du = du;
       }
@@ -772,7 +793,7 @@ void ImplicitSolver::commit(const Attempt& a, double dt) {
   }
   totals_.externalWork += external;
   internalWork_ += internal;
-  totals_.released += t.released;
+  totals_.released += a.releases();
   if (a.dTau != 0.0) lastIncrement_ = a.du, lastLoadFactorIncrement_ = a.dLambda, lastOpening_ = a.dTau;
   lambda_ += a.dLambda;
   time_ += dt;
@@ -802,6 +823,7 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
     a.maxIterations = finest ? 4 * settings_.maxIterations : settings_.maxIterations;
     a.lastResort = finest;
     a.snapBack = release ? SnapBackPolicy::Release : SnapBackPolicy::Stop;
+    a.keepReleases = finest && release;
     bool ok = control ? attemptIndirect(*control, piece, a) : attempt(piece, a);
     // A piece whose Newton (proper) stalls below the acceptance tolerance is kept: its residual
     // is carried into the next step's equilibrium (docs/implicit.md, "Load steps").
@@ -823,7 +845,7 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
       total.iterations = a.report.iterations;
       total.residual = relaxed ? a.failedResidual : a.report.residual;
       total.relaxed = relaxed ? 1 : 0;
-      total.released = a.trial.released;
+      total.released = a.releases();
       total.onsetOvershoot = a.trial.onsetOvershoot;
       // The next piece: longer after an easy step, shorter after a hard one.
       double grow = a.report.iterations <= settings_.easyIterations ? 2.0

@@ -218,7 +218,7 @@ bool restoreGeometry(const StepSetup& setup, std::size_t particles, const std::v
 
 void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometry& g, const Eigen::VectorXd& du,
                    bool withTangent, SnapBackPolicy snapBack, Trial& t, const Eigen::VectorXd* direction,
-                   const std::vector<std::uint8_t>* secant) {
+                   const std::vector<std::uint8_t>* secant, const ReleasedStarts* kept) {
   const std::size_t count = p.size();
   const int nx = setup.scene.grid.nodesX(), support = supportSize(setup.scene.solver.shapeFunction);
   t.strain.resize(count);
@@ -231,6 +231,7 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
   t.integrity = p.integrity;
   t.failed = SIZE_MAX;
   t.tangent.resize(0, 0);
+  t.releases.clear();
   UpdateOptions options(snapBack, true);
   options.substepLevels = setup.scene.solver.substepLevels;
   long released = 0;
@@ -242,18 +243,26 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
   for (std::size_t i = 0; i < count; ++i) {
     const Material& m = setup.materials[p.material[i]];
     const ElementNodes e = elementNodes(g.stencils[i], nx, support);
-    const Voigt d = strainIncrement(e, du);
-    Voigt strain = p.strain[i];
+    // A point released earlier in the attempt goes on from its released state.
+    const ReleasedStart* start = kept && !kept->of.empty() && kept->of[i] >= 0 ? &kept->starts[static_cast<std::size_t>(kept->of[i])] : nullptr;
+    const Voigt total = strainIncrement(e, du);
+    const Voigt d = start ? Voigt(total - start->increment) : total;
+    Voigt strain = start ? start->strain : p.strain[i];
     const std::int32_t b1 = p.band[i], b2 = p.secondBand.empty() ? -1 : p.secondBand[i];
-    if (b1 < 0 && b2 < 0 && m.closedFormStress(d, false, strain, t.stress[i])) {
+    if (!start && b1 < 0 && b2 < 0 && m.closedFormStress(d, false, strain, t.stress[i])) {
       t.strain[i] = strain;
       t.tangents[i] = m.stiffness();
       t.elastic[i] = 1;
       continue;
     }
     std::optional<BandState> band, second;
-    if (b1 >= 0) band = p.bands[static_cast<std::size_t>(b1)];
-    if (b2 >= 0) second = p.secondBands[static_cast<std::size_t>(b2)];
+    if (start) {
+      band = start->band;
+      second = start->secondBand;
+    } else {
+      if (b1 >= 0) band = p.bands[static_cast<std::size_t>(b1)];
+      if (b2 >= 0) second = p.secondBands[static_cast<std::size_t>(b2)];
+    }
     OpenedBands opened;
     const UpdateResult r = m.update({strain, t.integrity.empty() ? nullptr : &t.integrity[i], band ? &*band : nullptr,
                                      second ? &*second : nullptr},
@@ -276,12 +285,17 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
     t.stress[i] = r.stress;
     t.band[i] = band;
     t.secondBand[i] = second;
-    t.dissipation[i] = r.dissipation;
+    t.dissipation[i] = r.dissipation + (start ? start->dissipation : 0.0);
     released += r.released ? 1 : 0;
+    if (kept && r.released && band) {  // (an enriched point: its bands hold its state)
+#pragma omp critical(ecm_implicit_releases)
+      t.releases.emplace_back(i, ReleasedStart{total, strain, band, second, t.dissipation[i]});
+    }
     t.tangents[i] = secant && (*secant)[i] && band && !second && m.enriched() ? m.enriched()->secantTangent(*band) : r.tangent;
     t.elastic[i] = g.undamaged[i] && !band && !second && r.tangent == m.stiffness() ? 1 : 0;
   }
   t.released = released;
+  std::sort(t.releases.begin(), t.releases.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   t.onsetOvershoot = overshoot;
   t.failed = failed;
   t.failure = failure;
@@ -306,6 +320,19 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
     }
   }
   if (withTangent) assembleTangent(setup, p, g, t);
+}
+
+void keepReleases(const Trial& trial, std::size_t particles, ReleasedStarts& kept) {
+  if (trial.releases.empty()) return;
+  if (kept.of.empty()) kept.of.assign(particles, -1);
+  for (const auto& [i, start] : trial.releases) {
+    if (kept.of[i] < 0) {
+      kept.of[i] = static_cast<std::int32_t>(kept.starts.size());
+      kept.starts.push_back(start);
+    } else {
+      kept.starts[static_cast<std::size_t>(kept.of[i])] = start;
+    }
+  }
 }
 
 void assembleTangent(const StepSetup& setup, const Particles& p, const StepGeometry& g, Trial& t) {

@@ -12,6 +12,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "mpm/core/shape_function.hpp"
@@ -62,6 +63,21 @@ std::vector<std::uint8_t> reachedNodes(const StepSetup& setup, const Particles& 
 bool restoreGeometry(const StepSetup& setup, std::size_t particles, const std::vector<std::uint8_t>& prescribed,
                      const std::vector<std::int32_t>& bases, StepGeometry& geometry);
 
+// A point's state just after a snap-back release in an iterate of an attempt (docs/implicit.md,
+// "Releases kept within a step"): the attempt's later trials update the point from there, with
+// the rest of their strain increment, instead of from its committed state.
+struct ReleasedStart {
+  Voigt increment = Voigt::Zero();        // the strain increment, from the committed state, that released it
+  Voigt strain = Voigt::Zero();           // its strain there
+  std::optional<BandState> band, secondBand;
+  double dissipation = 0.0;               // per unit volume (MPa), booked by the step up to there
+};
+// The released points of an attempt: per particle the index of its start in `starts`, or -1.
+struct ReleasedStarts {
+  std::vector<std::int32_t> of;
+  std::vector<ReleasedStart> starts;
+};
+
 // The particles' states at the end of the step for a trial du, not committed.
 struct Trial {
   std::vector<Voigt> strain, stress;              // per particle
@@ -74,6 +90,7 @@ struct Trial {
   Eigen::SparseMatrix<double> tangent;            // over the unknowns (when asked)
   Eigen::VectorXd tangentTimesDirection;          // sum_p V B^T D B direction, per node component (when asked)
   long released = 0;                              // snap-backs released (UpdateOptions::snapBack)
+  std::vector<std::pair<std::size_t, ReleasedStart>> releases;  // with `kept` given: each released point's start
   double onsetOvershoot = 0.0;                    // the most a point that cracks in the trial passed its onset by: sqrt(Y_e / Y_onset) - 1
   std::size_t failed = SIZE_MAX;                  // first particle whose update failed
   UpdateResult failure;                           // its result
@@ -85,9 +102,14 @@ struct Trial {
 // components: the predictor's load from the prescribed increments.
 // With `secant` (per particle), the flagged one-band enriched points carry their secant tangent
 // (TwoPhasePoint::secantTangent) instead of the consistent one.
+// With `kept`, the points it holds start from their released states, and the trial lists the
+// points it releases with their starts (Trial::releases).
 void evaluateTrial(const StepSetup& setup, const Particles& particles, const StepGeometry& geometry,
                    const Eigen::VectorXd& du, bool withTangent, SnapBackPolicy snapBack, Trial& trial,
-                   const Eigen::VectorXd* direction = nullptr, const std::vector<std::uint8_t>* secant = nullptr);
+                   const Eigen::VectorXd* direction = nullptr, const std::vector<std::uint8_t>* secant = nullptr,
+                   const ReleasedStarts* kept = nullptr);
+// Keeps the releases of `trial` in `kept` (a point released again gets its new start).
+void keepReleases(const Trial& trial, std::size_t particles, ReleasedStarts& kept);
 // K of a trial evaluated without it: the elastic part plus, in particle order, what the
 // points that are not elastic in the trial change.
 void assembleTangent(const StepSetup& setup, const Particles& particles, const StepGeometry& geometry, Trial& trial);

@@ -199,6 +199,73 @@ TEST(Implicit, NewtonEndsWhereItLeavesItsBasinOrStalls) {
   EXPECT_FALSE(stalled({1e-3, 1e-3, 1e-3, 1e-3, 1e-3, 1e-3})) << "fewer than kStallWindow + 1 iterates";
 }
 
+// Releases kept within an attempt (docs/implicit.md, "Releases kept within a step"). The notched
+// block in a concrete whose points snap back at its cell size (E_p = 400 MPa: the snap-back size
+// h (E + E_p) / E_p = 0.05 x 32400 / 400 = 4.05 mm is below H = 5 mm; docs/model.md, "Snap-back
+// on the path") takes one trial of a uniform strain twice the onset strain f_t' / E: its points
+// crack, snap back and are released. Kept, a released point starts the attempt's later trials
+// from its released state: the same du again gives its stress and dissipation again, with no
+// new release; half the du unloads it from its released damage (its integrity stays), where
+// from the committed (intact) state it would not have failed so far.
+TEST(Implicit, AKeptReleaseStartsThePointsLaterTrialsFromItsReleasedState) {
+  Scene s = notchedCrackingBlock();
+  s.materials[0].softeningModulus = 400.0;
+  const ImplicitSolver solver(s);
+  const Particles& p = solver.particles();
+  std::vector<std::uint8_t> prescribed(static_cast<std::size_t>(2 * s.grid.nodeCount()), 0);
+  for (const auto node : solver.conditions()[0].nodes)
+    prescribed[2 * static_cast<std::size_t>(node)] = prescribed[2 * static_cast<std::size_t>(node) + 1] = 1;
+  StepGeometry g;
+  std::size_t outside = 0;
+  ASSERT_TRUE(stepGeometry(solver.setup(), p, prescribed, g, outside));
+  const double strain = 2.0 * ecm::test::kFt / ecm::test::kE;
+  Eigen::VectorXd du = Eigen::VectorXd::Zero(2 * s.grid.nodeCount());
+  for (int n = 0; n < s.grid.nodeCount(); ++n) du[2 * n + 1] = strain * s.grid.nodePosition(n).y();
+  const ReleasedStarts none;
+  Trial released;
+  evaluateTrial(solver.setup(), p, g, du, false, SnapBackPolicy::Release, released, nullptr, nullptr, &none);
+  ASSERT_EQ(released.failed, SIZE_MAX);
+  ASSERT_GT(released.released, 0);
+  ASSERT_EQ(static_cast<long>(released.releases.size()), released.released);
+  EXPECT_TRUE(std::is_sorted(released.releases.begin(), released.releases.end(),
+                             [](const auto& a, const auto& b) { return a.first < b.first; }));
+  ReleasedStarts kept;
+  keepReleases(released, p.size(), kept);
+  ASSERT_EQ(kept.starts.size(), released.releases.size());
+  Trial again, half, halfFromCommitted;
+  evaluateTrial(solver.setup(), p, g, du, false, SnapBackPolicy::Release, again, nullptr, nullptr, &kept);
+  evaluateTrial(solver.setup(), p, g, 0.5 * du, false, SnapBackPolicy::Release, half, nullptr, nullptr, &kept);
+  evaluateTrial(solver.setup(), p, g, 0.5 * du, false, SnapBackPolicy::Release, halfFromCommitted);
+  ASSERT_EQ(again.failed, SIZE_MAX);
+  ASSERT_EQ(half.failed, SIZE_MAX);
+  ASSERT_EQ(halfFromCommitted.failed, SIZE_MAX);
+  EXPECT_EQ(again.released, 0);
+  EXPECT_EQ(half.released, 0);
+  EXPECT_NEAR((again.internalForce - released.internalForce).norm(), 0.0, 1e-9 * released.internalForce.norm());
+  for (const auto& [i, start] : released.releases) {
+    ASSERT_GE(kept.of[i], 0) << i;
+    EXPECT_EQ(kept.starts[static_cast<std::size_t>(kept.of[i])].dissipation, start.dissipation) << i;
+    ASSERT_TRUE(start.band.has_value());
+    EXPECT_LT((again.stress[i] - released.stress[i]).norm(), 1e-9 * ecm::test::kFt) << i;
+    EXPECT_NEAR(again.dissipation[i], released.dissipation[i], 1e-12 * released.dissipation[i]) << i;
+    EXPECT_GT(released.dissipation[i], 0.0) << i;
+    ASSERT_TRUE(half.band[i].has_value());
+    EXPECT_EQ(half.band[i]->integrity, start.band->integrity) << i;  // unloading: the damage kept
+    EXPECT_EQ(half.dissipation[i], released.dissipation[i]) << i;
+    const double committedPath = halfFromCommitted.band[i] ? halfFromCommitted.band[i]->integrity : 1.0;
+    EXPECT_GT(committedPath, start.band->integrity) << i;
+  }
+  // A point released again later in the attempt gets its new start; the others keep theirs.
+  Trial later;
+  const std::size_t first = released.releases.front().first;
+  ReleasedStart again1 = released.releases.front().second;
+  again1.dissipation += 1.0;
+  later.releases.emplace_back(first, again1);
+  keepReleases(later, p.size(), kept);
+  EXPECT_EQ(kept.starts.size(), released.releases.size());
+  EXPECT_EQ(kept.starts[static_cast<std::size_t>(kept.of[first])].dissipation, again1.dissipation);
+}
+
 TEST(Implicit, TheAssembledTangentIsTheDerivativeOfTheInternalForce) {
   Scene s = notchedCrackingBlock();
   s.conditions[1].component[1].kind = Prescribed::Displacement;  // the top row: displacement in pseudo-time

@@ -42,6 +42,38 @@ TEST(SceneYaml, ShippedSecondBandScenesDifferOnlyInTheMaterialOption) {
   }
 }
 
+// The fine rate-free DEN is the medium one on the fine explicit scenes' grid: the same solver
+// settings, control, conditions, loads and stop.
+TEST(SceneYaml, ShippedFineImplicitSceneIsTheMediumOneOnTheFineGrid) {
+  const auto dir = std::filesystem::path(ECM_SOURCE_DIR) / "data" / "den";
+  const Scene fine = loadSceneFile(dir / "den-4b-fine-second-band-implicit.yaml");
+  const Scene medium = loadSceneFile(dir / "den-4b-medium-second-band-implicit.yaml");
+  const Scene explicitFine = loadSceneFile(dir / "den-4b-fine-second-band.yaml");
+  EXPECT_EQ(fine.grid.origin, explicitFine.grid.origin);
+  EXPECT_EQ(fine.grid.cellSize, explicitFine.grid.cellSize);
+  EXPECT_EQ(fine.grid.cellsX, explicitFine.grid.cellsX);
+  EXPECT_EQ(fine.grid.cellsY, explicitFine.grid.cellsY);
+  EXPECT_EQ(fine.particlesPerCell, medium.particlesPerCell);
+  ASSERT_TRUE(fine.solver.implicit.has_value());
+  ASSERT_TRUE(medium.solver.implicit.has_value());
+  const ImplicitSettings& a = *fine.solver.implicit;
+  const ImplicitSettings& b = *medium.solver.implicit;
+  EXPECT_EQ(a.tolerance, b.tolerance);
+  EXPECT_EQ(a.acceptTolerance, b.acceptTolerance);
+  EXPECT_EQ(a.onsetOvershoot, b.onsetOvershoot);
+  EXPECT_EQ(a.loadStep, b.loadStep);
+  ASSERT_TRUE(a.indirect.has_value());
+  ASSERT_TRUE(b.indirect.has_value());
+  EXPECT_EQ(a.indirect->step, b.indirect->step);
+  EXPECT_EQ(a.indirect->until, b.indirect->until);
+  EXPECT_EQ(a.indirect->terms.size(), b.indirect->terms.size());
+  EXPECT_EQ(fine.materials[0].secondBand, SecondBandOption::Orthogonal);
+  EXPECT_EQ(fine.conditions.size(), medium.conditions.size());
+  EXPECT_EQ(fine.loads.size(), medium.loads.size());
+  EXPECT_EQ(fine.endTime, medium.endTime);
+  EXPECT_EQ(fine.stopWhen.has_value(), medium.stopWhen.has_value());
+}
+
 TEST(SceneYaml, ShippedScenesLoad) {
   // The values the files hold (the reader has validated them already).
   const Scene bar = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data" / "mpm" / "elastic-bar.yaml");
