@@ -203,10 +203,11 @@ TEST(Implicit, NewtonEndsWhereItLeavesItsBasinOrStalls) {
 // block in a concrete whose points snap back at its cell size (E_p = 400 MPa: the snap-back size
 // h (E + E_p) / E_p = 0.05 x 32400 / 400 = 4.05 mm is below H = 5 mm; docs/model.md, "Snap-back
 // on the path") takes one trial of twice the onset strain f_t' / E along y in its left 10 mm
-// (0.6 times it further right): the points there crack, snap back and are released. Kept, a released point starts the attempt's later trials
-// from its released state: the same du again gives its stress and dissipation again, with no
-// new release; half the du unloads it from its released damage (its integrity stays), where
-// from the committed (intact) state it would not have failed so far.
+// (0.6 times it further right): the points there crack, snap back and are released. Kept, a
+// released point starts the attempt's later trials from its released state: the same du again
+// gives its stress and dissipation again, with no new release; half the du unloads it from its
+// released damage (its integrity stays), where from the committed (intact) state it would not
+// have failed so far.
 TEST(Implicit, AKeptReleaseStartsThePointsLaterTrialsFromItsReleasedState) {
   Scene s = notchedCrackingBlock();
   s.materials[0].softeningModulus = 400.0;
