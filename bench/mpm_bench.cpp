@@ -138,7 +138,7 @@ void BM_Phase(benchmark::State& state) {
     });
     timed(kGrid, [&] { updateGrid(setup, st.clock, st.grid, st.conditions, st.totals); });
     timed(kG2P, [&] { gridToParticle(setup, st.clock, st.grid, st.particles, true); });
-    timed(kStress, [&] { updateStresses(setup, st.clock.step, st.particles, st.totals); });
+    timed(kStress, [&] { updateStresses(setup, st.clock.step, st.particles, st.totals, st.crackPaths); });
     timed(kOutput, [&] { writeVtu(solver.particles(), solver.time(), vtu, &scratch); });
   }
   std::filesystem::remove(vtu);

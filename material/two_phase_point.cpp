@@ -421,7 +421,8 @@ UpdateResult TwoPhasePoint::updateIntactSlow(Voigt& strain, const Voigt& increme
   }
   BandState b;
   b.onsetStrain = strain + *alpha * increment;
-  b.crackNormal = canonicalNormal(principalStresses(stiffness() * b.onsetStrain).firstDirection);
+  b.crackNormal = options.onsetNormal ? canonicalNormal(*options.onsetNormal)
+                                      : canonicalNormal(principalStresses(stiffness() * b.onsetStrain).firstDirection);
   const double effectiveSize = size(b.crackNormal);
   if (!(effectiveSize >= minimumEffectiveSize(bandWidth_))) {  // H <= h leaves no bulk (docs/model.md)
     r.status = UpdateStatus::SizeTooSmall;

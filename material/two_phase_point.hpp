@@ -99,6 +99,9 @@ struct UpdateOptions {
   // A NotConverged update is retried in 2, 4, ... 2^substepLevels equal sub-steps (0: never).
   // Only Material::update sub-steps (material/material.hpp); the TwoPhasePoint calls ignore it.
   int substepLevels = 0;
+  // The crack normal a band that opens in this update takes (a caller that tracks crack paths:
+  // docs/model.md, "Crack paths"); nullptr: the first principal direction of the stress at onset.
+  const Vec2* onsetNormal = nullptr;
   UpdateOptions() = default;
   UpdateOptions(SnapBackPolicy policy, bool withTangent = true) : snapBack(policy), tangent(withTangent) {}  // NOLINT: implicit
 };

@@ -19,6 +19,7 @@ class ExplicitStepper final : public Stepper {
 
   const Particles& particles() const override { return solver_.particles(); }
   const Particles& kinematics() const override { return solver_.kinematics(); }
+  const CrackPaths& crackPaths() const override { return solver_.state().crackPaths; }
   const std::vector<ConditionState>& conditions() const override { return solver_.conditions(); }
   const std::vector<PlatenState>& platens() const override { return solver_.platens(); }
   std::vector<Vec2> appliedLoads() const override {

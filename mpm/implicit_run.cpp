@@ -63,6 +63,7 @@ class ImplicitStepper final : public Stepper {
   }
 
   const Particles& particles() const override { return solver_.particles(); }
+  const CrackPaths& crackPaths() const override { return solver_.crackPaths(); }
   const std::vector<ConditionState>& conditions() const override { return solver_.conditions(); }
   const std::vector<PlatenState>& platens() const override { return solver_.platens(); }
   std::vector<Vec2> appliedLoads() const override {

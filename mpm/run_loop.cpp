@@ -22,6 +22,20 @@ namespace ecm::mpm {
 
 namespace {
 
+// The tracked crack paths (crack_paths.csv: per arm its points from the root to the tip, then the
+// end of its look-ahead as a row with `ahead` 1; docs/model.md, "Crack paths").
+void writeCrackPaths(const CrackPaths& paths, const std::filesystem::path& path) {
+  writeCsvAtomically(path, {"arm", "point", "x_mm", "y_mm", "ahead"}, [&](io::CsvWriter& csv) {
+    for (std::size_t a = 0; a < paths.arms().size(); ++a) {
+      const CrackArm& arm = paths.arms()[a];
+      for (std::size_t k = 0; k < arm.points.size(); ++k)
+        csv.row({static_cast<double>(a), static_cast<double>(k), arm.points[k][0], arm.points[k][1], 0.0});
+      const Vec2 ahead = arm.points.back() + paths.geometry().lookAhead * arm.direction;
+      csv.row({static_cast<double>(a), static_cast<double>(arm.points.size()), ahead[0], ahead[1], 1.0});
+    }
+  });
+}
+
 using WallClock = std::chrono::steady_clock;
 double secondsSince(WallClock::time_point t) { return std::chrono::duration<double>(WallClock::now() - t).count(); }
 
@@ -231,6 +245,7 @@ class RunLoop {
       if (snapshots_ && !result_.completed && stepper_.failureKeepsConsistentState()) snapshot();  // where it stopped
       history_->close();
       writeParticles(stepper_.particles(), options_.outputDir / "particles_final.csv");  // also after a failure or a stop
+      if (stepper_.crackPaths().tracked()) writeCrackPaths(stepper_.crackPaths(), options_.outputDir / "crack_paths.csv");
     } catch (const io::OutputError& o) {
       outputFailure(o);
     }

@@ -13,6 +13,7 @@
 
 #include "mpm/output/checkpoint_codec.hpp"
 #include "mpm/run.hpp"
+#include "mpm/setup/crack_paths.hpp"
 #include "mpm/setup/step_setup.hpp"
 
 namespace ecm::mpm {
@@ -28,6 +29,7 @@ class Stepper {
   virtual const Particles& kinematics() const { return particles(); }
   virtual const std::vector<ConditionState>& conditions() const = 0;
   virtual const std::vector<PlatenState>& platens() const = 0;
+  virtual const CrackPaths& crackPaths() const = 0;  // (written as crack_paths.csv when tracked)
   virtual std::vector<Vec2> appliedLoads() const = 0;  // N, per scene load, now
   virtual long steps() const = 0;
   virtual double time() const = 0;  // s (implicit: pseudo-time), for the row callback

@@ -38,6 +38,7 @@ void writeCheckpoint(const std::filesystem::path& path, const Solver& solver, co
   e.array(s.deferred);
 
   checkpoint::putParticles(e, solver.particles());
+  solver.state().crackPaths.encode(e);
   const ScatterOrder& order = solver.state().order;  // the scatter's plan and measured rows
   e.count(order.chunks());
   for (std::size_t c = 0; c < order.chunks(); ++c) {
@@ -86,6 +87,7 @@ RunBookkeeping readCheckpoint(const std::filesystem::path& path, Solver& solver,
            std::to_string(solver.timeStep()) + " s (a material file or the grid changed)");
 
   checkpoint::getParticles(d, solver.editParticles(), solver.materials().size(), where);
+  solver.editState().crackPaths.decode(d);
   std::vector<std::int32_t> rows;
   d.array(rows, 4 * d.count(4 * sizeof(std::int32_t)));
   ScatterOrder& order = solver.editState().order;

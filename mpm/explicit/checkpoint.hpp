@@ -5,7 +5,7 @@
 // snapshot times, peak load). Written atomically and durably (checkpoint.bin.tmp, fsync, rename),
 // so a crash while writing leaves the previous checkpoint usable.
 //
-// Format (version 5; numbers in the machine's byte order, checked by a byte-order mark):
+// Format (version 6; numbers in the machine's byte order, checked by a byte-order mark):
 //   header, 32 bytes: "ECMMPMCK" | u32 version | u32 0x01020304 | u64 payload bytes |
 //                     u64 FNV-1a 64 of the payload
 //   payload: u64 scene file hash | i32 threads |
@@ -18,6 +18,8 @@
 //              u64 m (0 or n), f64 integrity m | u64 bands, each f64 crack normal 2, jump 2,
 //              onset strain 3, integrity, volume fraction | u64 k (0 or n), i32 second band k |
 //              u64 second bands, each as a band |
+//            crack paths (mpm/setup/crack_paths.hpp): u64 arms, each u64 points, f64 x y of each,
+//              f64 direction x y |
 //            scatter order (mpm/explicit/scatter_order.hpp): u64 chunks c, each i32 measured rows lo, hi,
 //              planned rows lo, hi
 //            run: f64 next output time, peak load, stop_when peak | u64 history.csv bytes, FNV-1a 64, rows |
@@ -36,8 +38,9 @@
 
 namespace ecm::mpm {
 
-// 2: the USL deferred list; 3: the stop_when peak; 4: the second bands; 5: the scatter order
-inline constexpr std::uint32_t kCheckpointVersion = 5;
+// 2: the USL deferred list; 3: the stop_when peak; 4: the second bands; 5: the scatter order;
+// 6: the crack paths
+inline constexpr std::uint32_t kCheckpointVersion = 6;
 
 // What an explicit run carries besides the solver: the run loop's book and the time of the next
 // output row.

@@ -70,7 +70,9 @@ void gridToParticleAndRemap(const StepSetup& setup, const Clock& clock, GridFiel
                             const ScatterOrder& order);
 // The material update (sub-stepping on failure) of every particle, or of `only` (sorted
 // particle indices) when it is given; adds the dissipation and the sub-step and release counts.
-void updateStresses(const StepSetup& setup, long step, Particles& particles, RunTotals& totals,
+// Tracked crack paths: an intact point off every path stays intact, and the paths grow after the
+// updates (mpm/setup/crack_paths.hpp).
+void updateStresses(const StepSetup& setup, long step, Particles& particles, RunTotals& totals, CrackPaths& paths,
                     const std::vector<std::uint32_t>* only = nullptr);
 // Stores the stress of every point whose stress follows its strain (Material::stressFollowsStrain:
 // elastic, intact enriched) as a : strain, the product every update of such a point ends with:

@@ -8,6 +8,7 @@
 #include "mpm/core/grid.hpp"
 #include "mpm/core/particles.hpp"
 #include "mpm/explicit/scatter_order.hpp"
+#include "mpm/setup/crack_paths.hpp"
 #include "mpm/setup/step_setup.hpp"
 
 namespace ecm::mpm {
@@ -43,6 +44,7 @@ struct MpmState {
   std::vector<PlatenState> platens;        // one per scene platen
   Clock clock;
   RunTotals totals;
+  CrackPaths crackPaths;  // where enriched points may open bands (docs/model.md, "Crack paths")
 };
 
 }  // namespace ecm::mpm

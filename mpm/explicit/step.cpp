@@ -55,7 +55,7 @@ void Solver::advance() {
     bool inGrid = false;  // G2P, strain, closed-form stresses, the next step's P2G
     intactStressesUnstored_ = true;  // the pass scatters the closed-form stresses without storing them
     timed(StepPhase::Fused, [&] { inGrid = gatherStressScatter(s, clock, grid, p, st.order, fused_); });
-    timed(StepPhase::Stress, [&] { updateStresses(s, clock.step, p, st.totals, &fused_.deferred); });  // the deferred points
+    timed(StepPhase::Stress, [&] { updateStresses(s, clock.step, p, st.totals, st.crackPaths, &fused_.deferred); });  // the deferred points
     if (inGrid) {  // (a stencil that left the grid is reported by the next step's scatterState)
       timed(StepPhase::DeferredScatter, [&] { scatterDeferred(s, p, grid, st.order, fused_); });  // their share of the next P2G
       fused_.gridHoldsState = true;
@@ -98,10 +98,10 @@ void Solver::phases() {
     });
   };
   const auto g2p = [&](bool strain) { timed(StepPhase::G2P, [&] { gridToParticle(s, clock, grid, p, strain); }); };
-  const auto stress = [&] { timed(StepPhase::Stress, [&] { updateStresses(s, clock.step, p, st.totals); }); };
+  const auto stress = [&] { timed(StepPhase::Stress, [&] { updateStresses(s, clock.step, p, st.totals, st.crackPaths); }); };
   const auto strainStress = [&] {  // strain and closed-form stresses in one pass, then the others
     timed(StepPhase::Strain, [&] { strainAndClosedFormStress(s, clock.dt, grid, p, pending_, pendingPerThread_); });
-    timed(StepPhase::Stress, [&] { updateStresses(s, clock.step, p, st.totals, &pending_); });
+    timed(StepPhase::Stress, [&] { updateStresses(s, clock.step, p, st.totals, st.crackPaths, &pending_); });
   };
   switch (s.scene.solver.explicitScheme.scheme) {
     case UpdateScheme::USF:  // update stress first: strain from the step's starting velocities

@@ -11,6 +11,7 @@
 
 #include "mpm/core/errors.hpp"
 #include "mpm/explicit/phases.hpp"
+#include "mpm/setup/stress_direction.hpp"
 
 namespace ecm::mpm {
 
@@ -39,7 +40,7 @@ void storeStressesOfIntactPoints(const StepSetup& setup, Particles& p) {
   }
 }
 
-void updateStresses(const StepSetup& setup, long step, Particles& p, RunTotals& totals,
+void updateStresses(const StepSetup& setup, long step, Particles& p, RunTotals& totals, CrackPaths& paths,
                     const std::vector<std::uint32_t>* only) {
   const bool deferredOnly = only != nullptr;
   // Positions j = 0 .. count - 1 in the list of particles to update (all, or the deferred ones).
@@ -60,9 +61,12 @@ void updateStresses(const StepSetup& setup, long step, Particles& p, RunTotals& 
   const bool keepSecants = p.keepsSecants();
   p.secants.resize(keepSecants ? p.bands.size() : 0);
   std::vector<std::vector<Onset>> onsets(static_cast<std::size_t>(setup.threads));
+  const bool tracked = paths.tracked();
+  std::vector<std::vector<OnsetCandidate>> held(static_cast<std::size_t>(setup.threads));
 #pragma omp parallel num_threads(setup.threads) reduction(+ : retries, released)
   {
     std::vector<Onset>& mine = onsets[static_cast<std::size_t>(omp_get_thread_num())];
+    std::vector<OnsetCandidate>& mineHeld = held[static_cast<std::size_t>(omp_get_thread_num())];
     // Dynamic: cracked points cost ~100 intact ones and cluster in space. Each point's update
     // is independent of the others, so the schedule does not change any result.
 #pragma omp for schedule(dynamic, 1) nowait
@@ -79,11 +83,40 @@ void updateStresses(const StepSetup& setup, long step, Particles& p, RunTotals& 
         const std::int32_t b2 = p.secondBand.empty() ? -1 : p.secondBand[i];
         Onset onset{i, {}};
         const auto k = static_cast<std::size_t>(bi);
+        // Tracked crack paths: an intact enriched point reaching onset opens its band only on a
+        // path, with the path's normal; elsewhere it stays intact (docs/model.md, "Crack paths").
+        UpdateOptions pointOptions = options;
+        Vec2 pathNormal;
+        EffectiveSize pathSize = setup.size;
+        if (tracked && bi < 0 && m.enriched()) {
+          if (const std::optional<PathCrossing> n = paths.crossingAt(p.position[i])) {
+            pathNormal = n->normal;
+            pathSize = EffectiveSize::fixed(n->effectiveSize);
+            pointOptions.onsetNormal = &pathNormal;
+          } else {
+            p.strain[i] += d;
+            p.stress[i] = m.intactStress(p.strain[i]);
+            const TwoPhasePoint& e = *m.enriched();
+            const double y = e.intactDrivingForce(p.strain[i]);
+            if (y >= e.bandLaw().onsetDrivingForce() && p.stress[i].allFinite()) {
+              const double overstress = std::sqrt(y / e.bandLaw().onsetDrivingForce());
+              mineHeld.push_back({i, p.position[i], overstress, p.stress[i] / overstress});
+            }
+            if (!p.stress[i].allFinite()) {
+#pragma omp critical(ecm_mpm_failure)
+              if (i < failure.particle) {
+                failure.particle = i;
+                failure.result = UpdateResult{};
+              }
+            }
+            continue;
+          }
+        }
         const UpdateResult r = m.update({p.strain[i], p.integrity.empty() ? nullptr : &p.integrity[i],
                                          bi >= 0 ? &p.bands[k] : nullptr,
                                          b2 >= 0 ? &p.secondBands[static_cast<std::size_t>(b2)] : nullptr,
                                          bi >= 0 && keepSecants ? &p.secants[k] : nullptr},
-                                        d, setup.size, onset.bands, options);
+                                        d, pathSize, onset.bands, pointOptions);
         if (r.converged()) {
           p.stress[i] = r.stress;
           if (r.dissipation != 0.0) chunkSum += r.dissipation * p.volume[i];
@@ -117,6 +150,18 @@ void updateStresses(const StepSetup& setup, long step, Particles& p, RunTotals& 
     }
   }
   p.secants.resize(keepSecants ? p.bands.size() : 0);  // (so that the sort below moves them with their bands)
+  if (tracked) {  // the paths grow from this step's new bands and held points, in particle order
+    std::vector<OnsetCandidate> candidates;
+    for (auto& h : held) candidates.insert(candidates.end(), h.begin(), h.end());
+    std::vector<Vec2> opened;
+    for (const Onset& o : all)
+      if (o.bands.first) opened.push_back(p.position[o.particle]);
+    if (!candidates.empty() || !opened.empty()) {
+      std::sort(candidates.begin(), candidates.end(),
+                [](const OnsetCandidate& a, const OnsetCandidate& b) { return a.particle < b.particle; });
+      paths.grow(opened, std::move(candidates), intactStressAverage(setup.materials, p));
+    }
+  }
   // Every 64 steps the bands go back into particle order (decided from the state and the step
   // alone, so a restarted run stores them exactly as an uninterrupted one).
   if ((step + 1) % 64 == 0 && !p.bandsInParticleOrder()) p.sortBandsByParticle();

@@ -46,6 +46,7 @@ void writeImplicitCheckpoint(const std::filesystem::path& path, const ImplicitSo
   e.put(s.lastLoadFactorIncrement);
   e.put(s.lastOpening);
   checkpoint::putParticles(e, solver.particles());
+  solver.crackPaths().encode(e);
   e.put(run.progress);
   e.put(run.nextSnapshot);
   checkpoint::putPeaks(e, run);
@@ -101,6 +102,7 @@ ImplicitBookkeeping readImplicitCheckpoint(const std::filesystem::path& path, Im
   s.lastLoadFactorIncrement = d.get<double>();
   s.lastOpening = d.get<double>();
   checkpoint::getParticles(d, solver.editParticles(), solver.setup().materials.size(), where);
+  solver.editCrackPaths().decode(d);
   run.progress = d.get<double>();
   run.nextSnapshot = d.get<double>();
   checkpoint::getPeaks(d, run);

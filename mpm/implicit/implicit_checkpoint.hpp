@@ -3,7 +3,7 @@
 // run's (mpm/explicit/checkpoint.hpp) but with the implicit solver's state, so a restarted run continues
 // bitwise as the uninterrupted one, on any thread count. Written atomically and durably.
 //
-// Format (version 4; numbers in the machine's byte order):
+// Format (version 5; numbers in the machine's byte order):
 //   header, 32 bytes: "ECMIMPCK" | u32 version | u32 0x01020304 | u64 payload bytes | u64 FNV-1a 64
 //   payload: u64 scene file hash | i32 threads |
 //            solver: f64 time, load factor, next piece (pseudo-time), next opening (mm) | i64 steps | f64 external work, internal
@@ -13,7 +13,7 @@
 //              factorised tangent: i64 rows (0: none), u64 nnz, i32 outer rows+1, i32 inner nnz, f64 nnz |
 //            indirect control: u64 i, f64 the last step's increments i | f64 last load factor increment,
 //              last opening |
-//            particles (as mpm/explicit/checkpoint.hpp) |
+//            particles and crack paths (as mpm/explicit/checkpoint.hpp) |
 //            run: f64 progress, next snapshot, peak load, stop_when peak, linear-solve seconds | i64 iterations,
 //              halvings, releases, factorisations, most iterations in a step, relaxed steps, Krylov iterations |
 //              u64 history.csv bytes, FNV-1a 64, rows | u64 snapshots, f64 their times
@@ -28,8 +28,8 @@
 namespace ecm::mpm {
 
 // 2: the adaptive opening step, the stop_when peak; 3: the last step's increments (indirect control);
-// 4: the Krylov iterations on the kept factorisation
-inline constexpr std::uint32_t kImplicitCheckpointVersion = 4;
+// 4: the Krylov iterations on the kept factorisation; 5: the crack paths
+inline constexpr std::uint32_t kImplicitCheckpointVersion = 5;
 
 // What an implicit run carries besides the solver: the run loop's book, the progress and the
 // solver's counters.

@@ -1,5 +1,6 @@
 // Implicit quasi-static load steps (mpm/implicit/implicit_solver.hpp).
 #include "mpm/implicit/implicit_solver.hpp"
+#include "mpm/setup/stress_direction.hpp"
 
 #include <omp.h>
 
@@ -152,6 +153,7 @@ ImplicitSolver::ImplicitSolver(Scene scene, int threads)
   conditions_ = conditionStates(setup_.scene);
   loads_ = loadStates(setup_.scene, particles_);
   platens_ = platenStates(setup_.scene);
+  crackPaths_ = crackPathsFor(setup_.scene.solver.crackPath, setup_.scene.grid.origin, setup_.scene.grid.cellSize);
   for (Vec2& v : particles_.velocity) v.setZero();  // quasi-static: no initial velocities
   lu_.setIterativeTolerance(settings_.krylovTolerance);
   lu_.setThreads(setup_.threads);
@@ -225,6 +227,7 @@ bool ImplicitSolver::prepare(double dt, const IndirectControl* control, Attempt&
     }
     geometryStep_ = steps_;
   }
+  geometry_.crackPaths = &crackPaths_;
   // Nodes the body barely reaches: tied to their neighbours (neither a prescribed component nor a
   // platen's node is tied; a platen's node is no source).
   {
@@ -816,6 +819,7 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
   const bool release = setup_.scene.solver.snapBack == SnapBackPolicy::Release;
   bool retried = false;
   int snapBackCuts = 0;  // halvings because a point snapped back (stop): after the first, it persists
+  int pathRedos = 0;     // tries of the same piece after its converged state grew the crack paths
   for (int cuts = 0;; ++cuts) {
     Attempt a;
     const bool finest = cuts >= settings_.maxHalvings;
@@ -837,6 +841,14 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
     total.factorizations += a.report.factorizations;
     total.krylovIterations += a.report.krylovIterations;
     total.linearSolveSeconds += a.report.linearSolveSeconds;
+    // Tracked crack paths: the converged state grows them (its new bands move the tips, its held
+    // points start cracks); where that puts held points on a path, the piece is solved again with
+    // the grown paths, so that a crack runs on within the step (docs/model.md, "Crack paths").
+    if (ok && crackPaths_.tracked() && growCrackPaths(a.trial) > 0 && pathRedos < kMaxPathRedos) {
+      ++pathRedos;
+      --cuts;
+      continue;
+    }
     if (ok) {
       commit(a, control ? 0.0 : piece);
       checkBalance();
@@ -893,6 +905,14 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
                           steps_ + 1, a.failedParticle == SIZE_MAX ? 0 : a.failedParticle, where, msg.str(),
                           a.failedStatus, a.failedResidual);
   }
+}
+
+std::size_t ImplicitSolver::growCrackPaths(const Trial& t) {
+  std::vector<Vec2> opened;
+  for (std::size_t i = 0; i < particles_.size(); ++i)
+    if (t.band[i] && particles_.band[i] < 0) opened.push_back(particles_.position[i]);
+  if (opened.empty() && t.held.empty()) return 0;
+  return crackPaths_.grow(opened, t.held, intactStressAverage(setup_.materials, particles_, &t.stress));
 }
 
 void ImplicitSolver::checkBalance() const {

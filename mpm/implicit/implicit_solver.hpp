@@ -93,6 +93,8 @@ class ImplicitSolver {
   // Throws std::invalid_argument when the state does not fit this solver's scene.
   void restore(const SavedState& s);
   Particles& editParticles() { return particles_; }
+  const CrackPaths& crackPaths() const { return crackPaths_; }
+  CrackPaths& editCrackPaths() { return crackPaths_; }
 
   double time() const { return time_; }
   long steps() const { return steps_; }
@@ -117,6 +119,9 @@ class ImplicitSolver {
   ImplicitStepReport advance(const IndirectControl* control, double largest, double remaining);
   ImplicitStepReport stepInPieces(const IndirectControl* control, double size);
   void commit(const Attempt& a, double dt);
+  // Grows the crack paths from a converged trial; how many of its held points are now on a path.
+  std::size_t growCrackPaths(const Trial& t);
+  static constexpr int kMaxPathRedos = 50;  // tries of one piece with grown paths
   // Throws SimulationError when the external and internal works part by more than
   // kBalanceTolerance of the work (checked after every step).
   void checkBalance() const;
@@ -155,6 +160,7 @@ class ImplicitSolver {
   long reductionLayouts_ = 0;
   long factorKey() const { return geometry_.patternBuilds + (reductionLayouts_ << 32); }
   Eigen::SparseMatrix<double> factored_;  // that tangent (a checkpoint stores it)
+  CrackPaths crackPaths_;  // where enriched points may open bands (docs/model.md, "Crack paths")
   StepGeometry geometry_;  // of the committed state after `geometryStep_` steps (-1: none)
   long geometryStep_ = -1;
   double internalWork_ = 0.0;  // sum over steps and particles of V (sigma_n + sigma_n+1)/2 : d eps (N mm)

@@ -232,6 +232,9 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
   t.failed = SIZE_MAX;
   t.tangent.resize(0, 0);
   t.releases.clear();
+  t.held.clear();
+  const CrackPaths* paths = g.crackPaths && g.crackPaths->tracked() ? g.crackPaths : nullptr;
+  std::vector<std::uint8_t> held(paths ? count : 0, 0);
   UpdateOptions options(snapBack, true);
   options.substepLevels = setup.scene.solver.substepLevels;
   long released = 0;
@@ -263,10 +266,29 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
       if (b1 >= 0) band = p.bands[static_cast<std::size_t>(b1)];
       if (b2 >= 0) second = p.secondBands[static_cast<std::size_t>(b2)];
     }
+    // Tracked crack paths: an intact enriched point opens its band only on a path, with the path's
+    // normal; elsewhere it stays intact (docs/model.md, "Crack paths").
+    UpdateOptions pointOptions = options;
+    Vec2 pathNormal;
+    EffectiveSize pathSize = setup.size;
+    if (paths && !band && !second && m.enriched()) {
+      if (const std::optional<PathCrossing> n = paths->crossingAt(p.position[i])) {
+        pathNormal = n->normal;
+        pathSize = EffectiveSize::fixed(n->effectiveSize);
+        pointOptions.onsetNormal = &pathNormal;
+      } else {
+        t.strain[i] = strain + d;
+        t.stress[i] = m.intactStress(t.strain[i]);
+        t.tangents[i] = m.stiffness();
+        t.elastic[i] = g.undamaged[i];
+        held[i] = 1;
+        continue;
+      }
+    }
     OpenedBands opened;
     const UpdateResult r = m.update({strain, t.integrity.empty() ? nullptr : &t.integrity[i], band ? &*band : nullptr,
                                      second ? &*second : nullptr},
-                                    d, setup.size, opened, options);
+                                    d, pathSize, opened, pointOptions);
     if (!r.converged() || !r.stress.allFinite()) {
 #pragma omp critical(ecm_implicit_failure)
       if (i < failed) {
@@ -277,7 +299,10 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
     }
     if (opened.first && m.enriched()) {  // how far past onset the elastic trial stress goes
       const TwoPhasePoint& e2 = *m.enriched();
-      overshoot = std::max(overshoot, std::sqrt(e2.intactDrivingForce(p.strain[i] + d) / e2.bandLaw().onsetDrivingForce()) - 1.0);
+      // (a point a crack path reached while it was held past onset starts there: not the step's doing)
+      const bool startedPast = paths && e2.intactDrivingForce(p.strain[i]) >= e2.bandLaw().onsetDrivingForce();
+      if (!startedPast)
+        overshoot = std::max(overshoot, std::sqrt(e2.intactDrivingForce(p.strain[i] + d) / e2.bandLaw().onsetDrivingForce()) - 1.0);
     }
     if (opened.first) band = opened.first;
     if (opened.second) second = opened.second;
@@ -296,6 +321,15 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
   }
   t.released = released;
   std::sort(t.releases.begin(), t.releases.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (std::size_t i = 0; i < held.size(); ++i) {  // the held points past onset, in particle order
+    if (!held[i]) continue;
+    const TwoPhasePoint& e = *setup.materials[p.material[i]].enriched();
+    const double y = e.intactDrivingForce(t.strain[i]);
+    if (y >= e.bandLaw().onsetDrivingForce()) {
+      const double overstress = std::sqrt(y / e.bandLaw().onsetDrivingForce());
+      t.held.push_back({i, p.position[i], overstress, t.stress[i] / overstress});
+    }
+  }
   t.onsetOvershoot = overshoot;
   t.failed = failed;
   t.failure = failure;

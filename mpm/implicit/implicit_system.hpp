@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "mpm/setup/crack_paths.hpp"
 #include "mpm/core/shape_function.hpp"
 #include "mpm/setup/step_setup.hpp"
 
@@ -45,6 +46,9 @@ struct StepGeometry {
   std::vector<std::uint8_t> undamaged;      // per particle: no band, no smeared damage at the step's start
   Eigen::VectorXd elasticValues;            // per entry of `pattern`: sum over undamaged points of V B^T D_e B
   long patternBuilds = 0;                   // how often the pattern was built (it is kept while no stencil moves to other nodes)
+  // Where enriched points may open bands in the step (docs/model.md, "Crack paths"): frozen while
+  // the step iterates, grown between its tries. nullptr: everywhere (CrackPathRule::Free).
+  const CrackPaths* crackPaths = nullptr;
 };
 
 // Locates every particle's stencil (false if one left the grid: `outside` names it) and
@@ -92,6 +96,7 @@ struct Trial {
   long released = 0;                              // snap-backs released (UpdateOptions::snapBack)
   std::vector<std::pair<std::size_t, ReleasedStart>> releases;  // with `kept` given: each released point's start
   double onsetOvershoot = 0.0;                    // the most a point that cracks in the trial passed its onset by: sqrt(Y_e / Y_onset) - 1
+  std::vector<OnsetCandidate> held;               // tracked crack paths: points past onset off every path, kept intact (particle order)
   std::size_t failed = SIZE_MAX;                  // first particle whose update failed
   UpdateResult failure;                           // its result
 };

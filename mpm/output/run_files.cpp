@@ -76,16 +76,31 @@ void plotLoadDisplacement(const Scene& scene, const std::filesystem::path& dir) 
 // The final state of every particle (x, y, damage, material id, normal opening and normal of the
 // band, stress), for damage and crack maps and the locking diagnosis.
 // Written as PATH.tmp, then renamed: a restart rewrites it, and a reader never sees half of it.
-void writeParticles(const Particles& p, const std::filesystem::path& path) {
+void writeCsvAtomically(const std::filesystem::path& path, const std::vector<std::string>& columns,
+                        const std::function<void(io::CsvWriter&)>& fill) {
   std::filesystem::path tmp = path;
   tmp += ".tmp";
   try {
-    std::vector<std::string> columns{"x_mm", "y_mm", "damage", "material", "opening_mm", "normal_x", "normal_y",
-                                     "sig_xx_MPa", "sig_yy_MPa", "sig_xy_MPa"};
-    const bool twoBands = !p.secondBand.empty();  // second_band: orthogonal: the second band's columns
-    if (twoBands)
-      for (const char* c : {"damage_2", "opening_2_mm", "normal_x_2", "normal_y_2"}) columns.emplace_back(c);
     io::CsvWriter csv(tmp, columns);
+    fill(csv);
+    csv.close();
+  } catch (const io::OutputError& e) {
+    std::error_code ignored;
+    std::filesystem::remove(tmp, ignored);
+    throw io::OutputError(path, e.reason);
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw io::OutputError(path, "rename from " + tmp.filename().string() + " failed: " + ec.message());
+}
+
+void writeParticles(const Particles& p, const std::filesystem::path& path) {
+  std::vector<std::string> columns{"x_mm", "y_mm", "damage", "material", "opening_mm", "normal_x", "normal_y",
+                                   "sig_xx_MPa", "sig_yy_MPa", "sig_xy_MPa"};
+  const bool twoBands = !p.secondBand.empty();  // second_band: orthogonal: the second band's columns
+  if (twoBands)
+    for (const char* c : {"damage_2", "opening_2_mm", "normal_x_2", "normal_y_2"}) columns.emplace_back(c);
+  writeCsvAtomically(path, columns, [&](io::CsvWriter& csv) {
     std::vector<double> row;
     for (std::size_t i = 0; i < p.size(); ++i) {
       const BandState* b = p.band[i] >= 0 ? &p.bands[static_cast<std::size_t>(p.band[i])] : nullptr;
@@ -99,15 +114,7 @@ void writeParticles(const Particles& p, const std::filesystem::path& path) {
       }
       csv.row(row);
     }
-    csv.close();
-  } catch (const io::OutputError& e) {
-    std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
-    throw io::OutputError(path, e.reason);
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw io::OutputError(path, "rename from " + tmp.filename().string() + " failed: " + ec.message());
+  });
 }
 
 // The damage map of particles_final.csv: one square point per particle, coloured by damage, laid

@@ -3,6 +3,7 @@
 // continued after a restart, its first columns the same for both), the final particles
 // (particles_final.csv) with their damage map, and the load-displacement plot.
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,6 +26,10 @@ std::unique_ptr<io::CsvWriter> openHistory(const std::filesystem::path& dir, con
 // atomically), the damage map of that file, and the load-displacement PNG of history.csv (its
 // first columns: time, step, each condition's displacement and reaction).
 void writeParticles(const Particles& particles, const std::filesystem::path& path);
+// A CSV written to PATH.tmp and renamed to PATH when `fill` has written its rows: a reader never
+// sees half a file (io::OutputError names PATH).
+void writeCsvAtomically(const std::filesystem::path& path, const std::vector<std::string>& columns,
+                        const std::function<void(io::CsvWriter&)>& fill);
 void plotDamage(const Scene& scene, std::size_t particles, const std::filesystem::path& dir);
 void plotLoadDisplacement(const Scene& scene, const std::filesystem::path& dir);
 

@@ -159,6 +159,8 @@ SolverSettings readSolver(const YamlMap& m, const std::string& preset) {
   if (m.has("gravity")) s.gravity = vec2(m, "gravity");
   s.substepLevels = m.getOr<int>("substep_levels", s.substepLevels);
   s.snapBack = io::readSnapBackPolicy(m);
+  s.crackPath = m.getEnumOr("crack_path", {"tracked", "free"}, toString(s.crackPath)) == std::string("tracked") ? CrackPathRule::Tracked
+                                                                                                             : CrackPathRule::Free;
   if (scheme == "implicit_static") {
     for (const char* k : {"flip", "cfl", "local_damping", "viscous_damping"})
       m.reject(k, "is a key of explicit scenes (implicit_static has no time step, mass or damping)");

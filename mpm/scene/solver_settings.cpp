@@ -34,4 +34,6 @@ bool available(LinearSolverKind k) {
   }
 }
 
+const char* toString(CrackPathRule r) { return r == CrackPathRule::Tracked ? "tracked" : "free"; }
+
 }  // namespace ecm::mpm

@@ -98,6 +98,13 @@ struct ImplicitSettings {
   int hardIterations = 10;
 };
 
+// Where an enriched point may open its band (docs/model.md, "Crack paths").
+enum class CrackPathRule {
+  Tracked,  // only on the crack paths the run tracks, with their normals
+  Free,     // wherever it reaches onset, normal to its own principal stress
+};
+const char* toString(CrackPathRule r);
+
 struct SolverSettings {
   // Read by both solvers.
   ShapeFunction shapeFunction = ShapeFunction::Linear;
@@ -108,6 +115,7 @@ struct SolverSettings {
   // increment): Release lets the band fail onto its stable branch (counted, reported); Stop
   // stops the run with the point's position and state (docs/model.md, "Snap-back on the path").
   SnapBackPolicy snapBack = SnapBackPolicy::Release;
+  CrackPathRule crackPath = CrackPathRule::Free;
   // The scheme: explicit (explicitScheme) unless `implicit` is set (scheme: implicit_static).
   ExplicitSettings explicitScheme;
   std::optional<ImplicitSettings> implicit;

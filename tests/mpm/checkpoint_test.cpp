@@ -213,6 +213,26 @@ TEST(Checkpoint, StopAndResumeGivesTheSameOutputsBitwise) {
   EXPECT_EQ(j["steps"], whole.steps);
 }
 
+// The same with tracked crack paths (docs/model.md, "Crack paths"): the checkpoint holds the paths,
+// so the resumed run opens its bands where the uninterrupted one does (crack_paths.csv included).
+TEST(Checkpoint, StopAndResumeWithTrackedCrackPathsGivesTheSameOutputsBitwise) {
+  TempDir tmp;
+  Scene scene = crackingBlock();
+  scene.solver.crackPath = CrackPathRule::Tracked;
+  const RunResult whole = runScene(scene, options(tmp.path() / "whole"));
+  ASSERT_TRUE(whole.completed) << whole.error;
+  ASSERT_TRUE(fs::exists(tmp.path() / "whole" / "crack_paths.csv"));
+  RunOptions first = options(tmp.path() / "split");
+  first.maxSteps = 137;
+  ASSERT_TRUE(runScene(scene, first).stopped);
+  RunOptions second = options(tmp.path() / "split");
+  second.restart = true;
+  const RunResult resumed = runScene(scene, second);
+  ASSERT_TRUE(resumed.completed) << resumed.error;
+  fs::remove(tmp.path() / "whole" / "summary.json");
+  expectSameOutputs(tmp.path() / "whole", tmp.path() / "split");
+}
+
 // With snapshot_every N the restarted run goes on with the same snapshot rows: the split run's
 // folder holds exactly the uninterrupted run's files, byte for byte (13 history rows, snapshots
 // at rows 0, 4, 8, 12).

@@ -153,6 +153,13 @@ TEST(ImplicitScene, AStoppedIndirectRunRestartsBitwiseOnAnotherThreadCount) {
   expectRestartIsBitwise(scene, 120, 160);
 }
 
+// The same with tracked crack paths: the checkpoint holds them (the DEN coarse cracks from step 40).
+TEST(ImplicitScene, AStoppedRunWithTrackedCrackPathsRestartsBitwise) {
+  Scene scene = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data" / "den" / "den-4b-coarse-implicit.yaml");
+  scene.solver.crackPath = CrackPathRule::Tracked;
+  expectRestartIsBitwise(scene, 45, 60);
+}
+
 TEST(ImplicitScene, AStoppedDisplacementControlledRunRestartsBitwiseOnAnotherThreadCount) {
   // The DEN coarse: the shear ramp and the first steps of tension, cracking from step 40 on.
   const Scene scene = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data" / "den" / "den-4b-coarse-implicit.yaml");

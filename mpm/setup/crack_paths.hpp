@@ -1,0 +1,137 @@
+#pragma once
+// Crack paths (docs/model.md, "Crack paths"): where an enriched point may open its band, with which
+// normal and which effective size. A crack starts at a root, where the first points of a region
+// reach onset, and grows in two arms, each a polyline from the root to a tip that reaches one
+// look-ahead past the tip. A tip moves when a point in its look-ahead opens a band, and turns by
+// the kink angle of the maximum hoop stress in the stress averaged ahead of it. A point opens a
+// band only in a grid cell that a path crosses: with the normal of the path in that cell and the
+// effective size H = cell area / the path's length in the cell, so that every cell the crack
+// crosses dissipates G_F times the crack's length in it. A point that reaches onset anywhere else
+// stays intact (a candidate: a new root where no crack is near). Both solvers keep one CrackPaths,
+// read-only while the points update and grown between updates, in particle order. Under
+// CrackPathRule::Free none of it runs.
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "material/voigt.hpp"
+#include "mpm/scene/solver_settings.hpp"
+
+namespace ecm::mpm {
+
+// The grid the paths cut and the rule's lengths (mm; docs/model.md, "Crack paths").
+struct CrackPathGeometry {
+  Vec2 origin = Vec2::Zero();   // the grid's first node
+  Vec2 cellSize = Vec2::Ones();
+  double lookAhead = 0.0;  // how far a path reaches past its tip: one cell
+  double exclusion = 0.0;  // a new crack starts no nearer than this to a path or another new root
+  double averaging = 0.0;  // radius of the stress average that turns a tip
+  double shortestChord = 0.0;  // a path crosses a cell only with at least this length in it
+  double smallestKink = 0.0;   // (rad) a tip turns only by a kink at least this large
+  static CrackPathGeometry forGrid(const Vec2& origin, const Vec2& cellSize);
+};
+
+// One arm of a crack: a polyline from the crack's root (points[0]) to its tip (back()), and the
+// unit direction in which it grows on from the tip.
+struct CrackArm {
+  std::vector<Vec2> points;
+  Vec2 direction = Vec2::UnitY();
+};
+
+// A point that reached onset off every path and stayed intact.
+struct OnsetCandidate {
+  std::size_t particle = 0;
+  Vec2 position = Vec2::Zero();
+  double overstress = 1.0;        // sqrt(Y / Y_onset) of its elastic stress, Eq. (12) with D = 0
+  Voigt stress = Voigt::Zero();   // that stress over the overstress: on the onset surface (MPa)
+};
+
+// How a band opens in a cell a path crosses.
+struct PathCrossing {
+  Vec2 normal = Vec2::UnitX();  // the normal of the path's longest piece in the cell
+  double chord = 0.0;           // the path's length in the cell (mm), look-ahead included
+  double effectiveSize = 0.0;   // H = cell area / chord (mm), Eq. (1) and Fig. 2
+};
+
+// The stress, in units of the tensile strength, averaged over the intact points within `radius`
+// of a point; nullopt where no such point is near.
+using AveragedStress = std::function<std::optional<Voigt>(const Vec2& at, double radius)>;
+
+// The direction in which a tip growing along `direction` runs on into the averaged stress `s`
+// (in units of the tensile strength) ahead of it: turned by the kink angle of the maximum hoop
+// stress (Erdogan and Sih 1963) for the ratio of the shear to the opening stress on its line,
+// sigma_nt / max(sigma_nn, 1), which stands for K_II / K_I. Mode I runs straight whatever
+// sigma_tt is (a principal direction would not: ahead of a mode-I tip sigma_tt ~ sigma_nn and the
+// principal axes swing with any shear). An opening stress below the strength does not drive the
+// crack yet and counts as the strength: the ratio of two weak stresses is noise. Unchanged where
+// sigma_nn is not tension.
+Vec2 kinkedDirection(const Vec2& direction, const Voigt& s);
+
+class CrackPaths {
+ public:
+  CrackPaths() = default;  // Free
+  CrackPaths(CrackPathRule rule, const CrackPathGeometry& geometry) : rule_(rule), geometry_(geometry) {}
+
+  bool tracked() const { return rule_ == CrackPathRule::Tracked; }
+  // The crossing of the cell that holds x, or nullopt where no path crosses it. Pure.
+  std::optional<PathCrossing> crossingAt(const Vec2& x) const;
+  // The distance from x to the nearest path (look-aheads included); infinity with no crack.
+  double distance(const Vec2& x) const;
+
+  // After the points' updates, in particle order: each arm whose look-ahead holds a point that
+  // opened its band (`opened`, their positions) moves its tip to the farthest such point's
+  // projection and turns by kinkedDirection() in the stress averaged ahead of it where that kink is
+  // at least `smallestKink` (below it the kink is the noise of the particles' stresses: a crack
+  // that curves turns once the kink its straight run builds up passes that); then each
+  // candidate (most overstressed first) farther than `exclusion` from every path starts a crack at
+  // the centre of the cell that holds the overstress-weighted centre of the candidates near it (a
+  // crack that starts on a grid line, as on a symmetry plane, would flip between the cells on
+  // either side of it at the least turn), normal to the first principal
+  // direction of their overstress-weighted stress (the points that reach onset first say where a
+  // crack starts and how it lies). Returns how many candidates are now in a crossed cell (they may
+  // open a band when their update is taken again).
+  std::size_t grow(const std::vector<Vec2>& opened, std::vector<OnsetCandidate> candidates, const AveragedStress& averaged);
+
+  const std::vector<CrackArm>& arms() const { return arms_; }
+  const CrackPathGeometry& geometry() const { return geometry_; }
+  CrackPathRule rule() const { return rule_; }
+  // The arms as they are (tests, checkpoints).
+  void restoreArms(std::vector<CrackArm> arms) { arms_ = std::move(arms); }
+  // Checkpoints (mpm/output/checkpoint_codec.hpp's Encoder and Decoder): u64 arms, each u64
+  // points, f64 x y of each, f64 direction x y.
+  template <class Encoder>
+  void encode(Encoder& e) const {
+    e.count(arms_.size());
+    for (const CrackArm& arm : arms_) {
+      e.count(arm.points.size());
+      for (const Vec2& p : arm.points) e.put(p);
+      e.put(arm.direction);
+    }
+  }
+  template <class Decoder>
+  void decode(Decoder& d) {
+    arms_.assign(d.count(sizeof(std::uint64_t) + 4 * sizeof(double)), CrackArm{});
+    const auto vec2 = [&d] {  // (x first: the order of a call's arguments is unspecified)
+      const double x = d.template get<double>();
+      return Vec2(x, d.template get<double>());
+    };
+    for (CrackArm& arm : arms_) {
+      arm.points.resize(d.count(2 * sizeof(double)));
+      for (Vec2& p : arm.points) p = vec2();
+      arm.direction = vec2();
+    }
+  }
+
+ private:
+  CrackPathRule rule_ = CrackPathRule::Free;
+  CrackPathGeometry geometry_;
+  std::vector<CrackArm> arms_;
+};
+
+// The paths of a run of this rule on this grid: none yet.
+inline CrackPaths crackPathsFor(CrackPathRule rule, const Vec2& origin, const Vec2& cellSize) {
+  return {rule, CrackPathGeometry::forGrid(origin, cellSize)};
+}
+
+}  // namespace ecm::mpm

@@ -1,0 +1,158 @@
+// The crack paths' geometry (mpm/setup/crack_paths.hpp, docs/model.md "Crack paths"): the kink of
+// the maximum hoop stress, the cells a path crosses and their effective sizes, roots and tips.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "mpm/setup/crack_paths.hpp"
+
+namespace ecm::mpm {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A stress average that is the same everywhere (units of the tensile strength).
+AveragedStress uniform(const Voigt& s) {
+  return [s](const Vec2&, double) -> std::optional<Voigt> { return s; };
+}
+
+CrackPaths unitGridPaths() { return crackPathsFor(CrackPathRule::Tracked, Vec2(0.0, 0.0), Vec2(1.0, 1.0)); }
+
+// A crack growing along +y has n = (-1, 0): sigma_nn = sigma_xx, sigma_nt = -sigma_xy.
+TEST(CrackPaths, ModeIRunsStraightWhateverTheStressAlongTheCrack) {
+  const Vec2 d(0.0, 1.0);
+  for (const double tt : {-3.0, 0.0, 2.0, 5.0}) EXPECT_EQ(kinkedDirection(d, Voigt(2.0, tt, 0.0)), d);
+  EXPECT_EQ(kinkedDirection(d, Voigt(-1.0, 0.0, 0.5)), d);  // a closed crack does not turn
+}
+
+// Erdogan and Sih (1963): theta = 2 atan((K_I - sqrt(K_I^2 + 8 K_II^2)) / (4 K_II)). K_II / K_I = 1
+// gives 2 atan(-1/2) = -53.13 degrees: (0, 1) turns to (sin 53.13, cos 53.13) = (0.8, 0.6).
+TEST(CrackPaths, MixedModeKinksByTheMaximumHoopStressAngle) {
+  const Vec2 turned = kinkedDirection(Vec2(0.0, 1.0), Voigt(1.0, 0.0, -1.0));
+  EXPECT_NEAR(turned[0], 0.8, 1e-12);
+  EXPECT_NEAR(turned[1], 0.6, 1e-12);
+  // Shear of the other sign turns the other way.
+  EXPECT_NEAR(kinkedDirection(Vec2(0.0, 1.0), Voigt(1.0, 0.0, 1.0))[0], -0.8, 1e-12);
+}
+
+// Pure mode II: theta -> 2 atan(-1 / sqrt(2)) = -70.53 degrees. An opening stress below the strength
+// counts as the strength, so a large shear over a weak opening is nearly that limit, not noise.
+TEST(CrackPaths, PureShearKinksBySeventyDegrees) {
+  const Vec2 turned = kinkedDirection(Vec2(0.0, 1.0), Voigt(0.01, 0.0, -1e6));
+  EXPECT_NEAR(std::atan2(turned[0], turned[1]), 2.0 * std::atan(1.0 / std::sqrt(2.0)), 1e-5);
+  // sigma_nt / sigma_nn = 0.1 / 0.2 would kink by 53 degrees; over the strength (1) it is 0.1: 10.8.
+  const Vec2 weak = kinkedDirection(Vec2(0.0, 1.0), Voigt(0.2, 0.0, -0.1));
+  EXPECT_NEAR(std::atan2(weak[0], weak[1]) * 180.0 / kPi, -2.0 * std::atan((1.0 - std::sqrt(1.08)) / 0.4) * 180.0 / kPi, 1e-9);
+}
+
+// The cells a path crosses, each with H = cell area / the path's length in it (Eq. (1), Fig. 2), so
+// that each dissipates G_F times the crack's length in it.
+TEST(CrackPaths, AStraightPathThroughACellGivesTheCellSizeAsEffectiveSize) {
+  CrackPaths paths = unitGridPaths();
+  paths.restoreArms({{{Vec2(0.5, 0.0), Vec2(0.5, 3.0)}, Vec2(0.0, 1.0)}});
+  const std::optional<PathCrossing> c = paths.crossingAt(Vec2(0.3, 1.2));
+  ASSERT_TRUE(c);
+  EXPECT_DOUBLE_EQ(c->chord, 1.0);
+  EXPECT_DOUBLE_EQ(c->effectiveSize, 1.0);
+  EXPECT_DOUBLE_EQ(std::abs(c->normal[0]), 1.0);
+  EXPECT_FALSE(paths.crossingAt(Vec2(1.2, 1.2)));   // the next column
+  EXPECT_FALSE(paths.crossingAt(Vec2(-0.5, 1.2)));  // the column before
+  // The look-ahead crosses the cells past the tip: (0.5, 3) to (0.5, 4).
+  EXPECT_TRUE(paths.crossingAt(Vec2(0.7, 3.5)));
+  EXPECT_FALSE(paths.crossingAt(Vec2(0.7, 4.5)));
+}
+
+TEST(CrackPaths, APathOnAGridLineCrossesTheCellsOnOneSideOnly) {
+  CrackPaths paths = unitGridPaths();
+  paths.restoreArms({{{Vec2(1.0, 0.0), Vec2(1.0, 3.0)}, Vec2(0.0, 1.0)}});
+  EXPECT_TRUE(paths.crossingAt(Vec2(1.5, 1.5)));
+  EXPECT_FALSE(paths.crossingAt(Vec2(0.5, 1.5)));
+}
+
+// A diagonal through the cells' corners: chord sqrt(2), H = 1 / sqrt(2); the cells it only touches
+// at a corner are not crossed.
+TEST(CrackPaths, ADiagonalPathGivesItsChordToEachCellItCrosses) {
+  CrackPaths paths = unitGridPaths();
+  paths.restoreArms({{{Vec2(0.0, 0.0), Vec2(3.0, 3.0)}, Vec2(1.0, 1.0).normalized()}});
+  const std::optional<PathCrossing> c = paths.crossingAt(Vec2(1.5, 1.5));
+  ASSERT_TRUE(c);
+  EXPECT_NEAR(c->chord, std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(c->effectiveSize, 1.0 / std::sqrt(2.0), 1e-12);
+  EXPECT_NEAR(std::abs(c->normal.dot(Vec2(1.0, -1.0).normalized())), 1.0, 1e-12);
+  EXPECT_FALSE(paths.crossingAt(Vec2(1.5, 0.5)));
+}
+
+// Over many straight paths at random angles and offsets, the crossed cells' chords add up to the
+// path's length less the clipped corners (each shorter than shortestChord): the dissipation a path
+// is given is G_F times its length within that margin.
+TEST(CrackPaths, TheCrossedCellsShareThePathsLength) {
+  CrackPaths paths = unitGridPaths();
+  const double shortest = paths.geometry().shortestChord;
+  std::srand(7);
+  for (int k = 0; k < 200; ++k) {
+    const double angle = kPi * std::rand() / RAND_MAX, x0 = 5.0 + std::rand() / double(RAND_MAX);
+    const Vec2 d(std::cos(angle), std::sin(angle));
+    const Vec2 a = Vec2(x0, 5.5) - 4.0 * d, b = Vec2(x0, 5.5) + 4.0 * d;
+    paths.restoreArms({{{a, b}, d}});
+    double sum = 0.0;
+    for (int i = -2; i < 14; ++i)
+      for (int j = -2; j < 14; ++j) {
+        const std::optional<PathCrossing> c = paths.crossingAt(Vec2(i + 0.5, j + 0.5));
+        if (!c) continue;
+        sum += c->chord;
+        EXPECT_NEAR(c->effectiveSize * c->chord, 1.0, 1e-12);
+      }
+    const double length = 9.0;  // a to b, and the look-ahead's cell past b
+    EXPECT_LE(sum, length + 1e-9);
+    // A straight line crosses at most (|d_x| + |d_y|) length + 2 cells; each clipped one loses < shortest.
+    const int corners = static_cast<int>(std::ceil((std::abs(d[0]) + std::abs(d[1])) * length)) + 2;
+    EXPECT_GE(sum, length - corners * shortest) << "angle " << angle;
+  }
+}
+
+// Two symmetric points at onset start one crack at the centre of their cell, normal to their
+// stress, in two arms; a point within the exclusion radius of it starts none.
+TEST(CrackPaths, OnsetStartsOneCrackAtTheCentreOfItsCell) {
+  CrackPaths paths = unitGridPaths();
+  const Voigt s(3.0, 0.0, 0.0);
+  std::vector<OnsetCandidate> held{{0, Vec2(0.3, 0.6), 1.0, s}, {1, Vec2(0.7, 0.6), 1.0, s}};
+  EXPECT_EQ(paths.grow({}, held, uniform(Voigt::Zero())), 2u);
+  ASSERT_EQ(paths.arms().size(), 2u);
+  EXPECT_EQ(paths.arms()[0].points[0], Vec2(0.5, 0.5));
+  EXPECT_EQ(paths.arms()[0].direction, Vec2(0.0, 1.0));
+  EXPECT_EQ(paths.arms()[1].direction, Vec2(0.0, -1.0));
+  // A point at onset within the exclusion radius of that crack (beside it) stays held.
+  EXPECT_EQ(paths.grow({}, {{2, Vec2(3.0, 0.6), 1.5, s}}, uniform(Voigt::Zero())), 0u);
+  EXPECT_EQ(paths.arms().size(), 2u);
+  // A second region of onset beyond the exclusion radius starts a crack of its own.
+  const double far = paths.geometry().exclusion + 2.0;
+  EXPECT_EQ(paths.grow({}, {{3, Vec2(0.5 + far, 0.5), 1.1, s}}, uniform(Voigt::Zero())), 1u);
+  EXPECT_EQ(paths.arms().size(), 4u);
+}
+
+// A band opening in a tip's look-ahead moves the tip to it; the tip turns only by a kink of at
+// least smallestKink (5 degrees).
+TEST(CrackPaths, ATipMovesToTheBandsThatOpenAheadOfItAndTurnsBeyondTheNoise) {
+  CrackPaths paths = unitGridPaths();
+  paths.restoreArms({{{Vec2(0.5, 0.5)}, Vec2(0.0, 1.0)}});
+  paths.grow({Vec2(0.6, 1.3)}, {}, uniform(Voigt(2.0, 1.0, -0.05)));  // a kink of 2.9 degrees
+  ASSERT_EQ(paths.arms()[0].points.size(), 2u);
+  EXPECT_NEAR(paths.arms()[0].points[1][1], 1.3, 1e-12);
+  EXPECT_EQ(paths.arms()[0].direction, Vec2(0.0, 1.0));
+  paths.grow({Vec2(0.5, 2.0)}, {}, uniform(Voigt(1.0, 0.0, -1.0)));  // 53 degrees
+  EXPECT_NEAR(paths.arms()[0].direction[0], 0.8, 1e-12);
+  // A band that opens behind the tip or beside the look-ahead does not move it.
+  paths.grow({Vec2(0.5, 1.0), Vec2(3.0, 2.5)}, {}, uniform(Voigt::Zero()));
+  EXPECT_EQ(paths.arms()[0].points.size(), 3u);
+}
+
+// Free: no paths, nothing grows.
+TEST(CrackPaths, TheFreeRuleTracksNothing) {
+  CrackPaths paths;
+  EXPECT_FALSE(paths.tracked());
+  EXPECT_EQ(paths.grow({Vec2(0.0, 0.0)}, {{0, Vec2(0.0, 0.0), 2.0, Voigt(3.0, 0.0, 0.0)}}, uniform(Voigt::Zero())), 0u);
+  EXPECT_TRUE(paths.arms().empty());
+}
+
+}  // namespace
+}  // namespace ecm::mpm
