@@ -16,6 +16,7 @@ CrackPathGeometry CrackPathGeometry::forGrid(const Vec2& origin, const Vec2& cel
   g.averaging = std::max(2.0 * cell, 5.0);  // at least 5 mm (docs/model.md, "Crack paths")
   g.exclusion = std::max(4.0 * cell, 10.0);  // at least 10 mm (docs/model.md, "Crack paths")
   g.shortestChord = 0.25 * cell;
+  g.turnEvery = 0.5 * cell;
   g.smallestKink = 5.0 * std::acos(-1.0) / 180.0;  // 5 degrees (docs/model.md, "Crack paths")
   return g;
 }
@@ -23,14 +24,6 @@ CrackPathGeometry CrackPathGeometry::forGrid(const Vec2& origin, const Vec2& cel
 namespace {
 
 Vec2 perpendicular(const Vec2& d) { return {-d[1], d[0]}; }
-
-// Distance from x to the segment a-b.
-double segmentDistance(const Vec2& x, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double length2 = ab.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((x - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
-  return (x - (a + t * ab)).norm();
-}
 
 // The length of segment a-b inside the box [lo, hi) (Liang-Barsky clipping). A segment that runs
 // along the box's upper or right edge belongs to the next cell, so that a path on a grid line
@@ -66,34 +59,57 @@ Vec2 kinkedDirection(const Vec2& direction, const Voigt& s) {
   return Vec2(c * direction[0] - si * direction[1], si * direction[0] + c * direction[1]).normalized();
 }
 
-std::optional<PathCrossing> CrackPaths::crossingAt(const Vec2& x) const {
+CrackPaths::CellKey CrackPaths::cellOf(const Vec2& x) const {
+  const auto ix = static_cast<CellKey>(std::floor((x[0] - geometry_.origin[0]) / geometry_.cellSize[0]));
+  const auto iy = static_cast<CellKey>(std::floor((x[1] - geometry_.origin[1]) / geometry_.cellSize[1]));
+  return (iy << 32) + ix;  // (a grid has far fewer than 2^31 cells a side)
+}
+
+void CrackPaths::index() {
+  crossed_.clear();
+  near_.clear();
   const Vec2& h = geometry_.cellSize;
-  const Vec2 lo(geometry_.origin[0] + std::floor((x[0] - geometry_.origin[0]) / h[0]) * h[0],
-                geometry_.origin[1] + std::floor((x[1] - geometry_.origin[1]) / h[1]) * h[1]);
-  const Vec2 hi = lo + h;
-  double chord = 0.0, longest = 0.0;
-  Vec2 along = Vec2::UnitY();
+  struct Pieces {
+    double chord = 0.0, longest = 0.0;
+    Vec2 along = Vec2::UnitY();
+  };
+  std::unordered_map<CellKey, Pieces> pieces;
+  const auto reach = static_cast<long>(std::ceil(geometry_.exclusion / std::min(h[0], h[1])));
   const auto add = [&](const Vec2& a, const Vec2& b) {
-    const double l = clippedLength(a, b, lo, hi);
-    chord += l;
-    if (l > longest) longest = l, along = (b - a).normalized();
+    if (a == b) return;  // (a tip that has just become a vertex)
+    const Vec2 lo = a.cwiseMin(b), hi = a.cwiseMax(b);
+    const auto i0 = static_cast<long>(std::floor((lo[0] - geometry_.origin[0]) / h[0])),
+               i1 = static_cast<long>(std::floor((hi[0] - geometry_.origin[0]) / h[0]));
+    const auto j0 = static_cast<long>(std::floor((lo[1] - geometry_.origin[1]) / h[1])),
+               j1 = static_cast<long>(std::floor((hi[1] - geometry_.origin[1]) / h[1]));
+    for (long j = j0; j <= j1; ++j)
+      for (long i = i0; i <= i1; ++i) {
+        const Vec2 cellLo(geometry_.origin[0] + i * h[0], geometry_.origin[1] + j * h[1]);
+        const double l = clippedLength(a, b, cellLo, cellLo + h);
+        if (l <= 0.0) continue;
+        Pieces& p = pieces[(static_cast<CellKey>(j) << 32) + i];
+        p.chord += l;
+        if (l > p.longest) p.longest = l, p.along = (b - a).normalized();
+      }
+    for (long j = j0 - reach; j <= j1 + reach; ++j)
+      for (long i = i0 - reach; i <= i1 + reach; ++i) near_.insert((static_cast<CellKey>(j) << 32) + i);
   };
   for (const CrackArm& arm : arms_) {
     for (std::size_t k = 0; k + 1 < arm.points.size(); ++k) add(arm.points[k], arm.points[k + 1]);
     add(arm.points.back(), arm.points.back() + geometry_.lookAhead * arm.direction);
+    if (arm.points.size() == 1) {  // (a root alone: its cell's neighbourhood is near)
+      const Vec2& r = arm.points[0];
+      add(r, r + 1e-9 * arm.direction);
+    }
   }
-  if (!(chord >= geometry_.shortestChord)) return std::nullopt;
-  return PathCrossing{perpendicular(along), chord, h[0] * h[1] / chord};
+  for (const auto& [key, p] : pieces)
+    if (p.chord >= geometry_.shortestChord) crossed_[key] = PathCrossing{perpendicular(p.along), p.chord, h[0] * h[1] / p.chord};
 }
 
-double CrackPaths::distance(const Vec2& x) const {
-  double best = std::numeric_limits<double>::infinity();
-  for (const CrackArm& arm : arms_) {
-    for (std::size_t k = 0; k + 1 < arm.points.size(); ++k)
-      best = std::min(best, segmentDistance(x, arm.points[k], arm.points[k + 1]));
-    best = std::min(best, segmentDistance(x, arm.points.back(), arm.points.back() + geometry_.lookAhead * arm.direction));
-  }
-  return best;
+std::optional<PathCrossing> CrackPaths::crossingAt(const Vec2& x) const {
+  const auto it = crossed_.find(cellOf(x));
+  if (it == crossed_.end()) return std::nullopt;
+  return it->second;
 }
 
 std::size_t CrackPaths::grow(const std::vector<Vec2>& opened, std::vector<OnsetCandidate> candidates,
@@ -117,9 +133,14 @@ std::size_t CrackPaths::grow(const std::vector<Vec2>& opened, std::vector<OnsetC
   for (std::size_t a = 0; a < arms_.size(); ++a) {
     if (advance[a] <= 0.0) continue;
     CrackArm& arm = arms_[a];
+    // The last segment runs from the last vertex along `direction` to the tip: the tip moves on it.
     const Vec2 tip = arm.points.back() + advance[a] * arm.direction;
+    if (arm.points.size() == 1) arm.points.push_back(tip);
+    else arm.points.back() = tip;
+    // Every half cell of advance the tip becomes a vertex and the direction is taken again there
+    // (centred half a radius on: the tip's own flanks carry the crack's antisymmetric shear).
+    if ((tip - arm.points[arm.points.size() - 2]).norm() < geometry_.turnEvery) continue;
     arm.points.push_back(tip);
-    // (centred half a radius on: the tip's own flanks carry the crack's antisymmetric shear)
     if (const std::optional<Voigt> ahead = averaged(tip + 0.5 * geometry_.averaging * arm.direction, geometry_.averaging)) {
       const Vec2 turned = kinkedDirection(arm.direction, *ahead);
       if (std::abs(std::atan2(arm.direction[0] * turned[1] - arm.direction[1] * turned[0], arm.direction.dot(turned))) >=
@@ -127,13 +148,14 @@ std::size_t CrackPaths::grow(const std::vector<Vec2>& opened, std::vector<OnsetC
         arm.direction = turned;
     }
   }
+  if (std::any_of(advance.begin(), advance.end(), [](double s) { return s > 0.0; })) index();
   // 2. Roots: candidates far from every path, the most overstressed first.
   std::stable_sort(candidates.begin(), candidates.end(), [](const OnsetCandidate& a, const OnsetCandidate& b) {
     return a.overstress > b.overstress || (a.overstress == b.overstress && a.particle < b.particle);
   });
   std::vector<std::uint8_t> used(candidates.size(), 0);
   for (std::size_t c = 0; c < candidates.size(); ++c) {
-    if (used[c] || !(distance(candidates[c].position) > geometry_.exclusion)) continue;
+    if (used[c] || nearPath(candidates[c].position)) continue;
     // The region's centre and stress: the candidates within the exclusion radius, by overstress.
     Vec2 centre = Vec2::Zero();
     Voigt stress = Voigt::Zero();
@@ -152,6 +174,7 @@ std::size_t CrackPaths::grow(const std::vector<Vec2>& opened, std::vector<OnsetC
     const Vec2 d = perpendicular(principalStresses(stress).firstDirection);
     arms_.push_back({{centre}, d});
     arms_.push_back({{centre}, -d});
+    index();
   }
   std::size_t onPath = 0;
   for (const OnsetCandidate& c : candidates) onPath += crossingAt(c.position) ? 1 : 0;

@@ -12,7 +12,10 @@
 // CrackPathRule::Free none of it runs.
 #include <cstddef>
 #include <functional>
+#include <cstdint>
 #include <optional>
+#include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include "material/voigt.hpp"
@@ -29,11 +32,14 @@ struct CrackPathGeometry {
   double averaging = 0.0;  // radius of the stress average that turns a tip
   double shortestChord = 0.0;  // a path crosses a cell only with at least this length in it
   double smallestKink = 0.0;   // (rad) a tip turns only by a kink at least this large
+  double turnEvery = 0.0;      // a tip's direction is taken again each time it has run this far
   static CrackPathGeometry forGrid(const Vec2& origin, const Vec2& cellSize);
 };
 
 // One arm of a crack: a polyline from the crack's root (points[0]) to its tip (back()), and the
-// unit direction in which it grows on from the tip.
+// unit direction in which it grows on from the tip. The vertices are where the direction was taken
+// (every turnEvery of advance); the last segment runs along `direction` (it is empty just after
+// the tip became a vertex).
 struct CrackArm {
   std::vector<Vec2> points;
   Vec2 direction = Vec2::UnitY();
@@ -76,12 +82,13 @@ class CrackPaths {
   bool tracked() const { return rule_ == CrackPathRule::Tracked; }
   // The crossing of the cell that holds x, or nullopt where no path crosses it. Pure.
   std::optional<PathCrossing> crossingAt(const Vec2& x) const;
-  // The distance from x to the nearest path (look-aheads included); infinity with no crack.
-  double distance(const Vec2& x) const;
+  // Whether x lies in a cell within the exclusion radius of a path (look-aheads included), counted
+  // in whole cells around each segment's cells: where no crack may start.
+  bool nearPath(const Vec2& x) const { return near_.count(cellOf(x)) > 0; }
 
   // After the points' updates, in particle order: each arm whose look-ahead holds a point that
   // opened its band (`opened`, their positions) moves its tip to the farthest such point's
-  // projection and turns by kinkedDirection() in the stress averaged ahead of it where that kink is
+  // projection and, every turnEvery, turns by kinkedDirection() in the stress averaged ahead of it where that kink is
   // at least `smallestKink` (below it the kink is the noise of the particles' stresses: a crack
   // that curves turns once the kink its straight run builds up passes that); then each
   // candidate (most overstressed first) farther than `exclusion` from every path starts a crack at
@@ -97,7 +104,10 @@ class CrackPaths {
   const CrackPathGeometry& geometry() const { return geometry_; }
   CrackPathRule rule() const { return rule_; }
   // The arms as they are (tests, checkpoints).
-  void restoreArms(std::vector<CrackArm> arms) { arms_ = std::move(arms); }
+  void restoreArms(std::vector<CrackArm> arms) {
+    arms_ = std::move(arms);
+    index();
+  }
   // Checkpoints (mpm/output/checkpoint_codec.hpp's Encoder and Decoder): u64 arms, each u64
   // points, f64 x y of each, f64 direction x y.
   template <class Encoder>
@@ -121,12 +131,22 @@ class CrackPaths {
       for (Vec2& p : arm.points) p = vec2();
       arm.direction = vec2();
     }
+    index();
   }
 
  private:
+  using CellKey = std::int64_t;
+  CellKey cellOf(const Vec2& x) const;
+  // Rebuilds the lookups below from the arms (after every change of them).
+  void index();
+
   CrackPathRule rule_ = CrackPathRule::Free;
   CrackPathGeometry geometry_;
   std::vector<CrackArm> arms_;
+  // Lookups of the arms, so that a point's query costs no walk over every path: the crossed cells,
+  // and the cells within the exclusion radius of a path.
+  std::unordered_map<CellKey, PathCrossing> crossed_;
+  std::unordered_set<CellKey> near_;
 };
 
 // The paths of a run of this rule on this grid: none yet.

@@ -124,8 +124,10 @@ TEST(CrackPaths, OnsetStartsOneCrackAtTheCentreOfItsCell) {
   // A point at onset within the exclusion radius of that crack (beside it) stays held.
   EXPECT_EQ(paths.grow({}, {{2, Vec2(3.0, 0.6), 1.5, s}}, uniform(Voigt::Zero())), 0u);
   EXPECT_EQ(paths.arms().size(), 2u);
+  EXPECT_TRUE(paths.nearPath(Vec2(0.5 + paths.geometry().exclusion, 0.5)));
   // A second region of onset beyond the exclusion radius starts a crack of its own.
   const double far = paths.geometry().exclusion + 2.0;
+  EXPECT_FALSE(paths.nearPath(Vec2(0.5 + far, 0.5)));
   EXPECT_EQ(paths.grow({}, {{3, Vec2(0.5 + far, 0.5), 1.1, s}}, uniform(Voigt::Zero())), 1u);
   EXPECT_EQ(paths.arms().size(), 4u);
 }
@@ -135,15 +137,24 @@ TEST(CrackPaths, OnsetStartsOneCrackAtTheCentreOfItsCell) {
 TEST(CrackPaths, ATipMovesToTheBandsThatOpenAheadOfItAndTurnsBeyondTheNoise) {
   CrackPaths paths = unitGridPaths();
   paths.restoreArms({{{Vec2(0.5, 0.5)}, Vec2(0.0, 1.0)}});
-  paths.grow({Vec2(0.6, 1.3)}, {}, uniform(Voigt(2.0, 1.0, -0.05)));  // a kink of 2.9 degrees
+  // 0.3 past the tip: the tip moves, below turnEvery (half a cell) the direction is not taken again.
+  paths.grow({Vec2(0.6, 0.8)}, {}, uniform(Voigt(1.0, 0.0, -1.0)));
   ASSERT_EQ(paths.arms()[0].points.size(), 2u);
-  EXPECT_NEAR(paths.arms()[0].points[1][1], 1.3, 1e-12);
+  EXPECT_NEAR(paths.arms()[0].points[1][1], 0.8, 1e-12);
+  EXPECT_EQ(paths.arms()[0].direction, Vec2(0.0, 1.0));
+  // 0.5 further (0.8 from the vertex): the tip becomes a vertex, the kink of 2.9 degrees is noise.
+  paths.grow({Vec2(0.4, 1.3)}, {}, uniform(Voigt(2.0, 1.0, -0.05)));
+  ASSERT_EQ(paths.arms()[0].points.size(), 3u);
+  EXPECT_NEAR(paths.arms()[0].points[2][1], 1.3, 1e-12);
   EXPECT_EQ(paths.arms()[0].direction, Vec2(0.0, 1.0));
   paths.grow({Vec2(0.5, 2.0)}, {}, uniform(Voigt(1.0, 0.0, -1.0)));  // 53 degrees
   EXPECT_NEAR(paths.arms()[0].direction[0], 0.8, 1e-12);
   // A band that opens behind the tip or beside the look-ahead does not move it.
+  const std::size_t vertices = paths.arms()[0].points.size();
+  const Vec2 tip = paths.arms()[0].points.back();
   paths.grow({Vec2(0.5, 1.0), Vec2(3.0, 2.5)}, {}, uniform(Voigt::Zero()));
-  EXPECT_EQ(paths.arms()[0].points.size(), 3u);
+  EXPECT_EQ(paths.arms()[0].points.size(), vertices);
+  EXPECT_EQ(paths.arms()[0].points.back(), tip);
 }
 
 // Free: no paths, nothing grows.
