@@ -7,10 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 
 #include "../io/temp_dir.hpp"
+#include "io/csv_reader.hpp"
 #include "run_helpers.hpp"
 #include "material/damage_function.hpp"
 #include "mpm/run.hpp"
@@ -29,16 +28,11 @@ struct BeamCurve {
 };
 
 inline BeamCurve beamReference() {
-  std::ifstream in(std::filesystem::path(ECM_SOURCE_DIR) / "data/reference/beam-band-node.csv");
+  const io::CsvTable t = io::readCsv(std::filesystem::path(ECM_SOURCE_DIR) / "data/reference/beam-band-node.csv");
   BeamCurve c;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#' || line[0] == 'c') continue;
-    std::stringstream s(line);
-    std::string a, b;
-    std::getline(s, a, ',');
-    std::getline(s, b, ',');
-    c.cmod.push_back(std::stod(a));
-    c.load.push_back(std::stod(b));
+  for (const auto& row : t.rows) {
+    c.cmod.push_back(row[0]);
+    c.load.push_back(row[1]);
   }
   return c;
 }
@@ -71,18 +65,9 @@ inline double checkBeam(const std::string& scenePath, double cell, double tailSh
   EXPECT_NEAR(energy.at(0.2), 71.76, 0.05 * 71.76);
 
   const DamageLawParams law{37000.0, 3.9, 60.648935647284965, 0.2826059340689524};  // beam-concrete-hordijk
-  std::ifstream in(dir.path() / "out" / "particles_final.csv");
-  std::string line;
-  std::getline(in, line);
+  const io::CsvTable particles = io::readCsv(dir.path() / "out" / "particles_final.csv");
   int open = 0;
-  while (std::getline(in, line)) {
-    double v[10];
-    std::stringstream s(line);
-    for (double& x : v) {
-      std::string f;
-      std::getline(s, f, ',');
-      x = std::stod(f);
-    }
+  for (const auto& v : particles.rows) {
     const double x = v[0], damage = v[2], opening = v[4], nx = v[5], sxx = v[7];
     if (opening < 1e-3) continue;
     ++open;
@@ -94,17 +79,8 @@ inline double checkBeam(const std::string& scenePath, double cell, double tailSh
   EXPECT_GE(open, static_cast<int>(0.9 * 2.0 * 25.0 / cell));  // the whole ligament, 25 mm: two points per cell row
   // The crack path itself (crack_paths.csv: arm, point, x, y, ahead) within one cell of the
   // ligament over the ligament's height, and one crack only (its two arms).
-  std::ifstream paths(dir.path() / "out" / "crack_paths.csv");
-  std::getline(paths, line);
   int vertices = 0;
-  while (std::getline(paths, line)) {
-    double v[5];
-    std::stringstream s(line);
-    for (double& x : v) {
-      std::string f;
-      std::getline(s, f, ',');
-      x = std::stod(f);
-    }
+  for (const auto& v : io::readCsv(dir.path() / "out" / "crack_paths.csv").rows) {
     if (v[4] != 0.0 || v[3] < 25.0 || v[3] > 50.0) continue;
     ++vertices;
     EXPECT_LE(v[0], 1.0) << "more than one crack";
