@@ -52,6 +52,10 @@ declare -A scene=(
   [lpanel-medium]=data/validation/lpanel-medium.yaml
   [lpanel-medium-implicit]=data/validation/lpanel-medium-implicit.yaml
   [lpanel-fine]=data/validation/lpanel-fine.yaml
+  [den-rig-coarse-tracked]=variant
+  [den-rig-medium-tracked]=variant
+  [lpanel-coarse-tracked]=variant
+  [lpanel-medium-tracked]=variant
 )
 runs=()
 for w in "$@"; do
@@ -71,9 +75,19 @@ for w in "$@"; do
   esac
 done
 
-# A variant: a shipped scene with its material swapped (the file and the body's material name).
+# A variant: a shipped scene with its material swapped (the file and the body's material name), or
+# with tracked crack paths (docs/model.md, "Crack paths").
 variant() {
-  local name=$1 from material
+  local name=$1 from material tracked=0
+  case "$name" in
+    *-tracked) from=data/validation/${name%-tracked}.yaml; from=${from/den-rig-/den-4b-rig-}; tracked=1 ;;
+  esac
+  if [[ $tracked == 1 ]]; then
+    sed -e "s|{file: ../materials/|{file: $PWD/data/materials/|" -e "s|^name: .*|name: $name|" \
+        -e "s|^solver:$|solver:\n  crack_path: tracked|" "$from" > "$out/scenes/$name.yaml"
+    echo "$out/scenes/$name.yaml"
+    return
+  fi
   case "$name" in
     den-rig-coarse-paper-law) from=data/validation/den-4b-rig-coarse.yaml; material=den-concrete ;;
     den-rig-coarse-second-band) from=data/validation/den-4b-rig-coarse.yaml; material=den-concrete-hordijk-second-band ;;

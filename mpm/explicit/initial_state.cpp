@@ -15,7 +15,7 @@ MpmState initialState(const StepSetup& setup, Particles particles) {
   MpmState st;
   st.particles = std::move(particles);
   st.grid.resize(g.nodeCount());
-  st.crackPaths = crackPathsFor(scene.solver.crackPath, g.origin, g.cellSize);
+  st.crackPaths = crackPathsFor(scene, st.particles);
   // The scatter order (mpm/explicit/scatter_order.hpp): the rows the stencils start on, then the plan.
   layOutChunks(g, scene.particlesPerCell, supportSize(scene.solver.shapeFunction), st.particles.size(), st.order);
   withShapeFunction(scene.solver.shapeFunction, [&]<ShapeFunction F>() {

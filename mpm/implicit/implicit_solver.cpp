@@ -153,7 +153,7 @@ ImplicitSolver::ImplicitSolver(Scene scene, int threads)
   conditions_ = conditionStates(setup_.scene);
   loads_ = loadStates(setup_.scene, particles_);
   platens_ = platenStates(setup_.scene);
-  crackPaths_ = crackPathsFor(setup_.scene.solver.crackPath, setup_.scene.grid.origin, setup_.scene.grid.cellSize);
+  crackPaths_ = crackPathsFor(setup_.scene, particles_);
   for (Vec2& v : particles_.velocity) v.setZero();  // quasi-static: no initial velocities
   lu_.setIterativeTolerance(settings_.krylovTolerance);
   lu_.setThreads(setup_.threads);

@@ -15,10 +15,22 @@ CrackPathGeometry CrackPathGeometry::forGrid(const Vec2& origin, const Vec2& cel
   g.lookAhead = cell;
   g.averaging = std::max(2.0 * cell, 5.0);  // at least 5 mm (docs/model.md, "Crack paths")
   g.exclusion = std::max(4.0 * cell, 10.0);  // at least 10 mm (docs/model.md, "Crack paths")
-  g.shortestChord = 0.25 * cell;
+  g.shortestChord = 0.02 * cell;  // docs/model.md, "Crack paths"
   g.turnEvery = 0.5 * cell;
+  g.interiorOverstress = 1.5;  // docs/model.md, "Crack paths"
   g.smallestKink = 5.0 * std::acos(-1.0) / 180.0;  // 5 degrees (docs/model.md, "Crack paths")
   return g;
+}
+
+CrackPaths::CrackPaths(CrackPathRule rule, const CrackPathGeometry& geometry, const std::vector<CellIndex>& roots)
+    : rule_(rule), geometry_(geometry), rootCells_(std::in_place) {
+  for (const CellIndex& c : roots) rootCells_->insert((static_cast<CellKey>(c.j) << 32) + c.i);
+}
+
+CrackPaths crackPathsFor(const Scene& scene, const Particles& particles) {
+  const CrackPathGeometry geometry = CrackPathGeometry::forGrid(scene.grid.origin, scene.grid.cellSize);
+  if (scene.solver.crackPath != CrackPathRule::Tracked) return {scene.solver.crackPath, geometry};
+  return {scene.solver.crackPath, geometry, rootCells(scene, particles, geometry.exclusion)};
 }
 
 namespace {
@@ -116,7 +128,10 @@ std::size_t CrackPaths::grow(const std::vector<Vec2>& opened, std::vector<OnsetC
                              const AveragedStress& averaged) {
   if (!tracked()) return 0;
   const double cell = std::sqrt(geometry_.cellSize[0] * geometry_.cellSize[1]);
-  // 1. Tips: the farthest opened point in each arm's look-ahead (a cell on either side of it).
+  // 1. Tips: the farthest opened point in each arm's look-ahead (a cell on either side of it). A
+  // point opens anywhere in a cell the look-ahead crosses, so up to a cell's diagonal past the
+  // look-ahead's end: such a point moves the tip to that end (were it ignored, the tip would stop
+  // short of it, its look-ahead might cross no new cell, and the crack would stall).
   std::vector<double> advance(arms_.size(), 0.0);
   for (const Vec2& x : opened) {
     for (std::size_t a = 0; a < arms_.size(); ++a) {
@@ -124,8 +139,8 @@ std::size_t CrackPaths::grow(const std::vector<Vec2>& opened, std::vector<OnsetC
       const Vec2 r = x - arm.points.back();
       const double along = r.dot(arm.direction);
       const double across = std::abs(r.dot(perpendicular(arm.direction)));
-      if (along > 0.0 && along <= geometry_.lookAhead && across <= cell) {
-        advance[a] = std::max(advance[a], along);
+      if (along > 0.0 && along <= geometry_.lookAhead + std::sqrt(2.0) * cell && across <= cell) {
+        advance[a] = std::max(advance[a], std::min(along, geometry_.lookAhead));
         break;  // a point moves one arm
       }
     }
@@ -155,13 +170,15 @@ std::size_t CrackPaths::grow(const std::vector<Vec2>& opened, std::vector<OnsetC
   });
   std::vector<std::uint8_t> used(candidates.size(), 0);
   for (std::size_t c = 0; c < candidates.size(); ++c) {
-    if (used[c] || nearPath(candidates[c].position)) continue;
+    if (used[c] || nearPath(candidates[c].position) || !mayRoot(candidates[c])) continue;
     // The region's centre and stress: the candidates within the exclusion radius, by overstress.
     Vec2 centre = Vec2::Zero();
     Voigt stress = Voigt::Zero();
     double weight = 0.0;
     for (std::size_t k = c; k < candidates.size(); ++k) {
-      if (used[k] || (candidates[k].position - candidates[c].position).norm() > geometry_.exclusion) continue;
+      if (used[k] || !mayRoot(candidates[k]) ||
+          (candidates[k].position - candidates[c].position).norm() > geometry_.exclusion)
+        continue;
       used[k] = 1;
       centre += candidates[k].overstress * candidates[k].position;
       stress += candidates[k].overstress * candidates[k].stress;

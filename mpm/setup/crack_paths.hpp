@@ -7,7 +7,8 @@
 // band only in a grid cell that a path crosses: with the normal of the path in that cell and the
 // effective size H = cell area / the path's length in the cell, so that every cell the crack
 // crosses dissipates G_F times the crack's length in it. A point that reaches onset anywhere else
-// stays intact (a candidate: a new root where no crack is near). Both solvers keep one CrackPaths,
+// stays intact (a candidate: a new root where a crack may start and none is near). Both solvers
+// keep one CrackPaths,
 // read-only while the points update and grown between updates, in particle order. Under
 // CrackPathRule::Free none of it runs.
 #include <cstddef>
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "material/voigt.hpp"
+#include "mpm/setup/crack_roots.hpp"
 #include "mpm/scene/solver_settings.hpp"
 
 namespace ecm::mpm {
@@ -30,9 +32,10 @@ struct CrackPathGeometry {
   double lookAhead = 0.0;  // how far a path reaches past its tip: one cell
   double exclusion = 0.0;  // a new crack starts no nearer than this to a path or another new root
   double averaging = 0.0;  // radius of the stress average that turns a tip
-  double shortestChord = 0.0;  // a path crosses a cell only with at least this length in it
   double smallestKink = 0.0;   // (rad) a tip turns only by a kink at least this large
+  double shortestChord = 0.0;  // a path crosses a cell only with at least this length in it
   double turnEvery = 0.0;      // a tip's direction is taken again each time it has run this far
+  double interiorOverstress = 1.0;  // off a root cell, a crack starts only this far past onset
   static CrackPathGeometry forGrid(const Vec2& origin, const Vec2& cellSize);
 };
 
@@ -77,11 +80,19 @@ Vec2 kinkedDirection(const Vec2& direction, const Voigt& s);
 class CrackPaths {
  public:
   CrackPaths() = default;  // Free
+  // Roots anywhere (unit tests).
   CrackPaths(CrackPathRule rule, const CrackPathGeometry& geometry) : rule_(rule), geometry_(geometry) {}
+  // Roots only in `roots` (crack_roots.hpp: the cells on a surface, away from held nodes).
+  CrackPaths(CrackPathRule rule, const CrackPathGeometry& geometry, const std::vector<CellIndex>& roots);
 
   bool tracked() const { return rule_ == CrackPathRule::Tracked; }
   // The crossing of the cell that holds x, or nullopt where no path crosses it. Pure.
   std::optional<PathCrossing> crossingAt(const Vec2& x) const;
+  // Whether a crack may start in the cell that holds x.
+  bool mayRootAt(const Vec2& x) const { return !rootCells_ || rootCells_->count(cellOf(x)) > 0; }
+  // Whether a held point may start a crack: in a root cell, or elsewhere once it is
+  // interiorOverstress past onset.
+  bool mayRoot(const OnsetCandidate& c) const { return c.overstress >= geometry_.interiorOverstress || mayRootAt(c.position); }
   // Whether x lies in a cell within the exclusion radius of a path (look-aheads included), counted
   // in whole cells around each segment's cells: where no crack may start.
   bool nearPath(const Vec2& x) const { return near_.count(cellOf(x)) > 0; }
@@ -91,7 +102,7 @@ class CrackPaths {
   // projection and, every turnEvery, turns by kinkedDirection() in the stress averaged ahead of it where that kink is
   // at least `smallestKink` (below it the kink is the noise of the particles' stresses: a crack
   // that curves turns once the kink its straight run builds up passes that); then each
-  // candidate (most overstressed first) farther than `exclusion` from every path starts a crack at
+  // candidate (most overstressed first) in a root cell (mayRootAt) farther than `exclusion` from every path starts a crack at
   // the centre of the cell that holds the overstress-weighted centre of the candidates near it (a
   // crack that starts on a grid line, as on a symmetry plane, would flip between the cells on
   // either side of it at the least turn), normal to the first principal
@@ -147,11 +158,17 @@ class CrackPaths {
   // and the cells within the exclusion radius of a path.
   std::unordered_map<CellKey, PathCrossing> crossed_;
   std::unordered_set<CellKey> near_;
+  // The cells where a crack may start; nullopt: anywhere. Fixed at the start of a run.
+  std::optional<std::unordered_set<CellKey>> rootCells_;
 };
 
-// The paths of a run of this rule on this grid: none yet.
+// The paths of a run of this rule on this grid: none yet, roots anywhere (unit tests).
 inline CrackPaths crackPathsFor(CrackPathRule rule, const Vec2& origin, const Vec2& cellSize) {
   return {rule, CrackPathGeometry::forGrid(origin, cellSize)};
 }
+
+// The paths of a scene's run: none yet, roots only on the body's surfaces away from held nodes
+// (crack_roots.hpp).
+CrackPaths crackPathsFor(const Scene& scene, const Particles& particles);
 
 }  // namespace ecm::mpm

@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
+#include <utility>
 
 #include "mpm/setup/crack_paths.hpp"
+#include "mpm/setup/crack_roots.hpp"
 
 namespace ecm::mpm {
 namespace {
@@ -155,6 +158,123 @@ TEST(CrackPaths, ATipMovesToTheBandsThatOpenAheadOfItAndTurnsBeyondTheNoise) {
   paths.grow({Vec2(0.5, 1.0), Vec2(3.0, 2.5)}, {}, uniform(Voigt::Zero()));
   EXPECT_EQ(paths.arms()[0].points.size(), vertices);
   EXPECT_EQ(paths.arms()[0].points.back(), tip);
+}
+
+// A point opens anywhere in a cell the look-ahead crosses, so up to a cell's diagonal past the
+// look-ahead's end; it moves the tip to that end (a tip left short of it could find no new cell
+// in its look-ahead, and the crack would stall: seen on the DEN's inclined cracks).
+TEST(CrackPaths, ABandOpeningPastTheLookAheadsEndMovesTheTipToThatEnd) {
+  CrackPaths paths = unitGridPaths();
+  paths.restoreArms({{{Vec2(0.5, 0.5)}, Vec2(0.0, 1.0)}});
+  paths.grow({Vec2(0.6, 0.5 + 1.4)}, {}, uniform(Voigt::Zero()));  // 1.4 ahead, the look-ahead is 1
+  ASSERT_EQ(paths.arms()[0].points.size(), 3u);  // (past half a cell: the tip became a vertex)
+  EXPECT_NEAR(paths.arms()[0].points.back()[1], 1.5, 1e-12);
+  // Farther than the look-ahead and a diagonal: not this arm's band.
+  paths.grow({Vec2(0.5, 1.5 + 1.0 + std::sqrt(2.0) + 0.01)}, {}, uniform(Voigt::Zero()));
+  EXPECT_NEAR(paths.arms()[0].points.back()[1], 1.5, 1e-12);
+}
+
+// The cells an inclined straight path crosses touch edge to edge (4-connected), but where it passes
+// within shortestChord of a grid node: a band whose cells meet only at corners cannot open without
+// straining the intact cells beside it, and locks. With a quarter of a cell (this project's first
+// choice) most inclined bands broke into corner-touching steps, and the DEN's cracks locked.
+std::size_t edgeConnectedPieces(const CrackPaths& paths, int n) {
+  std::set<std::pair<int, int>> cells;
+  for (int i = -2; i < n + 2; ++i)
+    for (int j = -2; j < n + 2; ++j)
+      if (paths.crossingAt(Vec2(i + 0.5, j + 0.5))) cells.insert({i, j});
+  std::size_t pieces = 0;
+  std::set<std::pair<int, int>> seen;
+  for (const auto& start : cells) {
+    if (seen.count(start)) continue;
+    ++pieces;
+    std::vector<std::pair<int, int>> stack{start};
+    seen.insert(start);
+    while (!stack.empty()) {
+      const auto [i, j] = stack.back();
+      stack.pop_back();
+      for (const auto& next : {std::pair{i + 1, j}, std::pair{i - 1, j}, std::pair{i, j + 1}, std::pair{i, j - 1}})
+        if (cells.count(next) && seen.insert(next).second) stack.push_back(next);
+    }
+  }
+  return pieces;
+}
+
+TEST(CrackPaths, AnInclinedPathsCellsTouchEdgeToEdge) {
+  const auto connected = [](double shortestChord) {
+    CrackPathGeometry g = CrackPathGeometry::forGrid(Vec2::Zero(), Vec2::Ones());
+    g.shortestChord = shortestChord;
+    std::srand(11);
+    int whole = 0;
+    for (int k = 0; k < 200; ++k) {
+      const double angle = 2.0 * kPi * std::rand() / RAND_MAX;
+      const Vec2 d(std::cos(angle), std::sin(angle));
+      const Vec2 a = Vec2(10.0, 10.0) + Vec2(std::rand(), std::rand()) / double(RAND_MAX) - 7.0 * d;
+      CrackPaths paths(CrackPathRule::Tracked, g);
+      paths.restoreArms({{{a, a + 14.0 * d}, d}});
+      whole += edgeConnectedPieces(paths, 20) == 1 ? 1 : 0;
+    }
+    return whole;
+  };
+  // A band breaks only where the path passes within about shortestChord of a grid node (measured
+  // 2026-12-06: 170 of these 200 bands whole with 0.02 of a cell, 24 with a quarter).
+  const int kept = connected(CrackPathGeometry::forGrid(Vec2::Zero(), Vec2::Ones()).shortestChord);
+  EXPECT_GE(kept, 150);
+  EXPECT_LE(connected(0.25), 50);
+}
+
+// Where a crack may start: cells on a surface of the body (an edge, a notch's face), none within
+// the exclusion radius of a box of held nodes, none inside the body.
+TEST(CrackRoots, CracksStartOnSurfacesAwayFromHeldNodes) {
+  Scene scene;
+  scene.grid.origin = Vec2::Zero();
+  scene.grid.cellSize = Vec2::Ones();
+  scene.grid.cellsX = 12;
+  scene.grid.cellsY = 8;
+  Particles particles;
+  for (int j = 0; j < 8; ++j)
+    for (int i = 0; i < 12; ++i) {
+      if (i == 6 && j < 3) continue;  // a notch one cell wide, three deep, from the bottom edge
+      for (const double dx : {0.25, 0.75})
+        for (const double dy : {0.25, 0.75}) {
+          particles.position.push_back(Vec2(i + dx, j + dy));
+          particles.origin.push_back(Vec2(i + dx, j + dy));
+          particles.material.push_back(0);
+        }
+    }
+  scene.conditions.push_back(NodeCondition::fixed("clamp", Box{Vec2(-1.0, 7.9), Vec2(3.0, 9.0)}));
+  const std::vector<CellIndex> roots = rootCells(scene, particles, 1.5);
+  std::set<std::pair<long, long>> at;
+  for (const CellIndex& c : roots) at.insert({c.i, c.j});
+  EXPECT_TRUE(at.count({5, 1}));   // the notch's left face
+  EXPECT_TRUE(at.count({7, 2}));   // its right face
+  EXPECT_TRUE(at.count({6, 3}));   // its tip
+  EXPECT_TRUE(at.count({11, 4}));  // the right edge
+  EXPECT_TRUE(at.count({0, 3}));   // the left edge, 4.5 below the clamp
+  EXPECT_FALSE(at.count({3, 4}));  // inside
+  EXPECT_FALSE(at.count({9, 5}));
+  EXPECT_FALSE(at.count({0, 7}));  // beside the clamp
+  EXPECT_FALSE(at.count({3, 7}));  // 0.64 from it
+  EXPECT_FALSE(at.count({0, 6}));  // 1.4 below it
+  EXPECT_TRUE(at.count({4, 7}));   // 1.55 from it
+  EXPECT_FALSE(at.count({6, 0}));  // the notch holds no points
+}
+
+// Held off a root cell, a point starts a crack only once it is interiorOverstress past onset.
+TEST(CrackRoots, APointInsideTheBodyStartsACrackOnlyWellPastOnset) {
+  const CrackPathGeometry g = CrackPathGeometry::forGrid(Vec2::Zero(), Vec2::Ones());
+  CrackPaths paths(CrackPathRule::Tracked, g, {CellIndex{0, 0}});
+  EXPECT_TRUE(paths.mayRootAt(Vec2(0.5, 0.5)));
+  EXPECT_FALSE(paths.mayRootAt(Vec2(30.5, 30.5)));
+  const Voigt s(1.0, 0.0, 0.0);
+  const double below = 0.99 * g.interiorOverstress;
+  EXPECT_EQ(paths.grow({}, {{0, Vec2(30.5, 30.5), below, s}}, uniform(Voigt::Zero())), 0u);
+  EXPECT_TRUE(paths.arms().empty());
+  EXPECT_EQ(paths.grow({}, {{0, Vec2(30.5, 30.5), g.interiorOverstress, s}}, uniform(Voigt::Zero())), 1u);
+  EXPECT_EQ(paths.arms().size(), 2u);
+  // On a root cell, onset is enough.
+  EXPECT_EQ(paths.grow({}, {{1, Vec2(0.5, 0.5), 1.0, s}}, uniform(Voigt::Zero())), 1u);
+  EXPECT_EQ(paths.arms().size(), 4u);
 }
 
 // Free: no paths, nothing grows.
