@@ -19,6 +19,7 @@ CrackPathGeometry CrackPathGeometry::forGrid(const Vec2& origin, const Vec2& cel
   g.turnEvery = 0.5 * cell;
   g.interiorOverstress = 1.5;  // docs/model.md, "Crack paths"
   g.smallestKink = 5.0 * std::acos(-1.0) / 180.0;  // 5 degrees (docs/model.md, "Crack paths")
+  g.smallestRadius = 3.0 * g.averaging;             // docs/model.md, "Crack paths"
   return g;
 }
 
@@ -158,9 +159,13 @@ std::size_t CrackPaths::grow(const std::vector<Vec2>& opened, std::vector<OnsetC
     arm.points.push_back(tip);
     if (const std::optional<Voigt> ahead = averaged(tip + 0.5 * geometry_.averaging * arm.direction, geometry_.averaging)) {
       const Vec2 turned = kinkedDirection(arm.direction, *ahead);
-      if (std::abs(std::atan2(arm.direction[0] * turned[1] - arm.direction[1] * turned[0], arm.direction.dot(turned))) >=
-          geometry_.smallestKink)
-        arm.direction = turned;
+      const double kink = std::atan2(arm.direction[0] * turned[1] - arm.direction[1] * turned[0], arm.direction.dot(turned));
+      if (std::abs(kink) >= geometry_.smallestKink) {
+        // at most turnEvery / smallestRadius: a path curves no tighter than that radius
+        const double turn = std::copysign(std::min(std::abs(kink), geometry_.turnEvery / geometry_.smallestRadius), kink);
+        const double c = std::cos(turn), si = std::sin(turn);
+        arm.direction = Vec2(c * arm.direction[0] - si * arm.direction[1], si * arm.direction[0] + c * arm.direction[1]).normalized();
+      }
     }
   }
   if (std::any_of(advance.begin(), advance.end(), [](double s) { return s > 0.0; })) index();

@@ -33,6 +33,7 @@ struct CrackPathGeometry {
   double exclusion = 0.0;  // a new crack starts no nearer than this to a path or another new root
   double averaging = 0.0;  // radius of the stress average that turns a tip
   double smallestKink = 0.0;   // (rad) a tip turns only by a kink at least this large
+  double smallestRadius = 0.0; // a path's radius of curvature is at least this (a turn at most turnEvery / it)
   double shortestChord = 0.0;  // a path crosses a cell only with at least this length in it
   double turnEvery = 0.0;      // a tip's direction is taken again each time it has run this far
   double interiorOverstress = 1.0;  // off a root cell, a crack starts only this far past onset
@@ -99,16 +100,17 @@ class CrackPaths {
 
   // After the points' updates, in particle order: each arm whose look-ahead holds a point that
   // opened its band (`opened`, their positions) moves its tip to the farthest such point's
-  // projection and, every turnEvery, turns by kinkedDirection() in the stress averaged ahead of it where that kink is
-  // at least `smallestKink` (below it the kink is the noise of the particles' stresses: a crack
-  // that curves turns once the kink its straight run builds up passes that); then each
-  // candidate (most overstressed first) in a root cell (mayRootAt) farther than `exclusion` from every path starts a crack at
-  // the centre of the cell that holds the overstress-weighted centre of the candidates near it (a
-  // crack that starts on a grid line, as on a symmetry plane, would flip between the cells on
-  // either side of it at the least turn), normal to the first principal
-  // direction of their overstress-weighted stress (the points that reach onset first say where a
-  // crack starts and how it lies). Returns how many candidates are now in a crossed cell (they may
-  // open a band when their update is taken again).
+  // projection and, every turnEvery, turns by kinkedDirection() in the stress averaged ahead of
+  // it where that kink is at least `smallestKink` (below it the kink is the noise of the
+  // particles' stresses: a crack that curves turns once the kink its straight run builds up
+  // passes that), by at most turnEvery / smallestRadius; then each candidate (most overstressed
+  // first) that may start a crack (mayRoot) farther than `exclusion` from every path starts one
+  // at the centre of the cell that holds the overstress-weighted centre of the candidates near it
+  // (a crack that starts on a grid line, as on a symmetry plane, would flip between the cells on
+  // either side of it at the least turn), normal to the first principal direction of their
+  // overstress-weighted stress (the points that reach onset first say where a crack starts and
+  // how it lies). Returns how many candidates are now in a crossed cell (they may open a band
+  // when their update is taken again).
   std::size_t grow(const std::vector<Vec2>& opened, std::vector<OnsetCandidate> candidates, const AveragedStress& averaged);
 
   const std::vector<CrackArm>& arms() const { return arms_; }

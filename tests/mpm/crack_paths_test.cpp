@@ -136,9 +136,11 @@ TEST(CrackPaths, OnsetStartsOneCrackAtTheCentreOfItsCell) {
 }
 
 // A band opening in a tip's look-ahead moves the tip to it; the tip turns only by a kink of at
-// least smallestKink (5 degrees).
+// least smallestKink (5 degrees), and by at most turnEvery / smallestRadius.
 TEST(CrackPaths, ATipMovesToTheBandsThatOpenAheadOfItAndTurnsBeyondTheNoise) {
-  CrackPaths paths = unitGridPaths();
+  CrackPathGeometry g = CrackPathGeometry::forGrid(Vec2::Zero(), Vec2::Ones());
+  g.smallestRadius = 0.1;  // (no bound on the turn here: the next test bounds it)
+  CrackPaths paths(CrackPathRule::Tracked, g);
   paths.restoreArms({{{Vec2(0.5, 0.5)}, Vec2(0.0, 1.0)}});
   // 0.3 past the tip: the tip moves, below turnEvery (half a cell) the direction is not taken again.
   paths.grow({Vec2(0.6, 0.8)}, {}, uniform(Voigt(1.0, 0.0, -1.0)));
@@ -158,6 +160,26 @@ TEST(CrackPaths, ATipMovesToTheBandsThatOpenAheadOfItAndTurnsBeyondTheNoise) {
   paths.grow({Vec2(0.5, 1.0), Vec2(3.0, 2.5)}, {}, uniform(Voigt::Zero()));
   EXPECT_EQ(paths.arms()[0].points.size(), vertices);
   EXPECT_EQ(paths.arms()[0].points.back(), tip);
+}
+
+// A path curves no tighter than smallestRadius (3 averaging radii): in a field that asks a kink
+// of 53 degrees at every vertex, each turnEvery of advance turns the tip by turnEvery /
+// smallestRadius, and the path runs on a polygon of that radius.
+TEST(CrackPaths, APathCurvesNoTighterThanItsSmallestRadius) {
+  CrackPaths paths = unitGridPaths();
+  const CrackPathGeometry& g = paths.geometry();
+  EXPECT_DOUBLE_EQ(g.smallestRadius, 3.0 * g.averaging);
+  paths.restoreArms({{{Vec2(0.5, 0.5)}, Vec2(0.0, 1.0)}});
+  double heading = 0.0;  // atan2(x, y): clockwise from +y (this shear turns the path the other way)
+  for (int k = 0; k < 6; ++k) {
+    const CrackArm& arm = paths.arms()[0];
+    // A stress that asks the same 53-degree kink of the arm's current line (sigma_nn = 1 = -sigma_nt).
+    const Vec2 d = arm.direction, n(-d[1], d[0]);
+    const Eigen::Matrix2d s = n * n.transpose() - (n * d.transpose() + d * n.transpose());
+    paths.grow({arm.points.back() + 0.6 * d}, {}, uniform(Voigt(s(0, 0), s(1, 1), s(0, 1))));
+    heading -= g.turnEvery / g.smallestRadius;
+    EXPECT_NEAR(std::atan2(paths.arms()[0].direction[0], paths.arms()[0].direction[1]), heading, 1e-9) << k;
+  }
 }
 
 // A point opens anywhere in a cell the look-ahead crosses, so up to a cell's diagonal past the
