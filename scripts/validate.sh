@@ -12,12 +12,15 @@
 #                   about 1.5 hours (the implicit DEN alone took 69 minutes on one shared thread)
 #         fine      the fine meshes (explicit, one and two bands), about 1.5 hours
 #         all       quick medium fine
-#         RUN       one run by name (see `runs` below)
+#         RUN       one run by name (see `scene` below; *-tracked: with tracked crack paths)
 #         report    no run: the tables and plots of what is in OUT_DIR
 # Writes OUT_DIR/RUN/ (ecm-mpm's output folder, without VTU snapshots, plus compare.csv and
 # compare.json), OUT_DIR/den.png and OUT_DIR/lpanel.png (ecm against the tests), OUT_DIR/summary.json
 # and the tables on stdout. Units: mm, N, MPa, t, s.
 # Threads: $VALIDATE_THREADS (default 2); binary: $VALIDATE_BIN (default ./build/mpm/ecm-mpm).
+# Exit status: 0 when every run completed and has its comparison; 1 otherwise, with the failed
+# runs listed at the end. $VALIDATE_KNOWN_FAILURES (run names, space-separated) lists runs known to
+# fail: they are reported, not counted, and one that completes is counted (take it off the list).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-results/validation}
@@ -108,13 +111,21 @@ variant() {
   echo "$out/scenes/$name.yaml"
 }
 
+failed=()
 for r in "${runs[@]}"; do
   s=${scene[$r]}
   [[ $s == variant ]] && s=$(variant "$r")
   echo "== $r ($s)" >&2
   start=$SECONDS
   "$bin" "$s" --out "$out/$r" --threads "$threads" --no-vtu -q
-  echo "$r: exit $?, $((SECONDS - start)) s" >&2
+  code=$?
+  echo "$r: exit $code, $((SECONDS - start)) s" >&2
+  if [[ " ${VALIDATE_KNOWN_FAILURES:-} " == *" $r "* ]]; then
+    [[ $code == 0 ]] && failed+=("$r (listed in VALIDATE_KNOWN_FAILURES, but it completed: take it off the list)") \
+                     || echo "$r: a known failure (VALIDATE_KNOWN_FAILURES)" >&2
+  elif [[ $code != 0 ]]; then
+    failed+=("$r (exit $code: $out/$r/summary.json)")
+  fi
 done
 
 # The comparisons (scripts/validation/compare.py) and the report (scripts/validation/report.py).
@@ -129,9 +140,15 @@ for d in "$out"/*/; do
   esac
 done
 python3 scripts/validation/report.py "$out"
-# Every run asked for has its comparison (a failed run too: its status is in the table).
-missing=0
+# Every run asked for has its comparison (a failed run too: its status is in the table), and a
+# run that failed fails the script, named at the end.
+status=0
 for r in "${runs[@]}"; do
-  [[ -s $out/$r/compare.json ]] || { echo "error: $r has no comparison ($out/$r)" >&2; missing=1; }
+  [[ -s $out/$r/compare.json ]] || { echo "error: $r has no comparison ($out/$r)" >&2; status=1; }
 done
-exit $missing
+if [[ ${#failed[@]} -gt 0 ]]; then
+  echo "failed runs (${#failed[@]} of ${#runs[@]}):" >&2
+  printf '  %s\n' "${failed[@]}" >&2
+  status=1
+fi
+exit $status
