@@ -4,6 +4,8 @@
 // the integrity x = 1 - D from F(x) = Y (irreversible), the traction t = x E eps_L. A closing
 // crack gets no stiffness back (as in ecm: the spectral split acts on Y only).
 // Pure functions over a plain state; the scalar functions of F come from material/.
+#include <stdexcept>
+
 #include "material/damage_function.hpp"
 
 namespace ecm::cohesive {
@@ -24,6 +26,13 @@ struct InterfaceResponse {
   double tangent = 0.0;      // dt / d delta (MPa/mm), consistent
   double dissipation = 0.0;  // energy dissipated per area in the increment (N/mm)
   double stored = 0.0;       // energy stored per area at the end of it (N/mm)
+};
+
+// A jump a law cannot answer (an opening past the end of a table): the solver treats it as a
+// failed Newton iteration, so a trial iterate that overshoots costs a smaller step, and a run
+// whose converged jumps need it ends with this message.
+struct InterfaceLawError : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 // `state` is updated to the end of the increment.

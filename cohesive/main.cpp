@@ -26,9 +26,13 @@ int run(const std::filesystem::path& sceneFile, const std::filesystem::path& out
   const HalfModel model = buildModel(scene);
   io::prepareOutputDir(out);
   running = true;
-  std::cout << "ecm-cohesive: " << scene.name << ", law " << (scene.law.kind == LawKind::band ? "band" : "hordijk") << ", cell "
-            << scene.cellSize << " mm: " << model.mesh.elements.size() << " elements, " << model.equations << " dofs, "
-            << model.interface.size() << " interface nodes\n";
+  std::cout << "ecm-cohesive: " << scene.name << ", law " << lawName(scene.law.kind) << ", cell " << scene.cellSize << " mm: "
+            << model.mesh.elements.size() << " elements, " << model.equations << " dofs, " << model.interface.size()
+            << " interface nodes\n";
+  if (scene.law.kind == LawKind::table)
+    std::cout << "  table " << scene.law.table.source << ": " << scene.law.table.opening.size() << " rows to opening "
+              << scene.law.table.endOpening() << " mm, area " << scene.law.energyToFailure() << " N/mm (material.fracture_energy "
+              << scene.fractureEnergy << " N/mm)\n";
   HistoryWriter history(out / "history.csv", model);
   const auto start = std::chrono::steady_clock::now();
   RunInfo info;
@@ -71,7 +75,7 @@ int main(int argc, char** argv) {
   app.add_option("scene", sceneFile, "the scene (YAML)")->required();
   app.add_option("--out", out, "output folder")->required();
   app.add_option("--cell", cell, "target cell size (mm), overrides the scene's cell");
-  app.add_option("--law", law, "band | hordijk, overrides the scene's law");
+  app.add_option("--law", law, "band | hordijk | table, overrides the scene's law");
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
     return io::errorLine("ecm-cohesive", e.what()) + "Run with --help for more information.\n";
   });
@@ -83,11 +87,11 @@ int main(int argc, char** argv) {
   SceneOverrides overrides;
   overrides.cellSize = cell;
   if (app.count("--law") > 0) {
-    if (law != "band" && law != "hordijk") {
-      io::printError("ecm-cohesive", "--law '" + law + "' is not one of: band, hordijk");
+    if (law != "band" && law != "hordijk" && law != "table") {
+      io::printError("ecm-cohesive", "--law '" + law + "' is not one of: band, hordijk, table");
       return io::kExitBadInput;
     }
-    overrides.law = law == "band" ? LawKind::band : LawKind::hordijk;
+    overrides.law = law == "band" ? LawKind::band : law == "hordijk" ? LawKind::hordijk : LawKind::table;
   }
   bool running = false;
   try {

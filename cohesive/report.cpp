@@ -31,8 +31,15 @@ nlohmann::json runSummary(const Scene& scene, const HalfModel& model, const Solv
   j["name"] = scene.name;
   j["scene"] = scene.file;
   j["units"] = "mm, N, MPa";
-  j["law"] = scene.law.kind == LawKind::band ? "band" : "hordijk";
+  j["law"] = lawName(scene.law.kind);
   if (scene.law.kind == LawKind::hordijk) j["initial_stiffness"] = scene.law.hordijk.initialStiffness;
+  if (scene.law.kind == LawKind::table) {
+    // A table stops at a finite opening: its area is what it can dissipate, not G_F.
+    const TableInterface& t = scene.law.table;
+    j["initial_stiffness"] = t.initialStiffness;
+    j["table"] = {{"file", t.source}, {"rows", t.opening.size()}, {"end_opening", t.endOpening()},
+                  {"elastic_limit", t.elasticLimit()}, {"area", scene.law.energyToFailure()}};
+  }
   j["control"] = model.controlName;
   j["completed"] = info.completed;
   if (!info.completed) j["failure"] = info.failure;
@@ -77,7 +84,8 @@ void writeLigament(const std::filesystem::path& path, const SolveResult& result)
 
 void plotLoadCurve(const std::filesystem::path& dir, const Scene& scene, const HalfModel& model) {
   io::PlotSpec spec;
-  spec.title = scene.name + ": cohesive reference (" + (scene.law.kind == LawKind::band ? "band law" : "Hordijk") + ")";
+  const char* law = scene.law.kind == LawKind::band ? "band law" : scene.law.kind == LawKind::hordijk ? "Hordijk" : "table";
+  spec.title = scene.name + ": cohesive reference (" + law + ")";
   spec.xLabel = model.controlName + " (mm)";
   spec.yLabel = "P (N)";
   spec.series.push_back({"history.csv", "2:3", "", "P", "lines lw 2"});

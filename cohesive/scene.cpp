@@ -1,7 +1,9 @@
 #include "cohesive/scene.hpp"
 
 #include <cmath>
+#include <filesystem>
 
+#include "cohesive/table_file.hpp"
 #include "io/yaml_input.hpp"
 #include "material/parameter_check.hpp"
 
@@ -11,6 +13,28 @@ namespace {
 
 using io::Range;
 using io::YamlMap;
+
+// table: {file: PATH, initial_stiffness: K0}, PATH relative to the scene's folder. The rows'
+// faults are the CSV's (FILE:LINE); K0's is the scene's. The table's area is not checked against
+// material.fracture_energy: it stops at a finite opening (ecm-cohesive reports the area).
+void readTableLaw(const YamlMap& top, double tensileStrength, TableInterface& table) {
+  const YamlMap t = top.child("table");
+  const std::filesystem::path file = t.directory() / t.get<std::string>("file");
+  const double k0 = t.get<double>("initial_stiffness", Range::positive());
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) t.fail("file", "no table file '" + file.string() + "'");
+  table = readTableFile(file);
+  table.initialStiffness = k0;
+  // The first row is f_t': a table of another concrete than the scene's is a mistake.
+  if (std::abs(table.tensileStrength() / tensileStrength - 1.0) > 1e-6)
+    t.fail("file", "the table starts at " + std::to_string(table.tensileStrength()) + " MPa, not at material.tensile_strength = " +
+                       std::to_string(tensileStrength) + " MPa");
+  try {
+    table.checkStiffness();
+  } catch (const ParameterError& e) {
+    t.fail("initial_stiffness", e.what());
+  }
+}
 
 Scene readScene(const YamlMap& top, const SceneOverrides& o) {
   Scene s;
@@ -31,9 +55,14 @@ Scene readScene(const YamlMap& top, const SceneOverrides& o) {
   const double ft = mat.get<double>("tensile_strength", Range::positive());
   s.fractureEnergy = mat.get<double>("fracture_energy", Range::positive());
 
-  s.law.kind = top.getEnum("law", {"band", "hordijk"}) == "band" ? LawKind::band : LawKind::hordijk;
+  const std::string law = top.getEnum("law", {"band", "hordijk", "table"});
+  s.law.kind = law == "band" ? LawKind::band : law == "hordijk" ? LawKind::hordijk : LawKind::table;
   if (o.law) s.law.kind = *o.law;
-  if (s.law.kind == LawKind::band) top.reject("hordijk", "only with law: hordijk");
+  if (s.law.kind != LawKind::hordijk) top.reject("hordijk", "only with law: hordijk");
+  if (s.law.kind != LawKind::table) top.reject("table", "only with law: table");
+  else if (!top.has("table")) top.fail("table", "law 'table' needs the block table: {file, initial_stiffness}");
+  // The band block serves the band law, and Hordijk's default K0 (E/h); a table law would ignore it.
+  if (s.law.kind == LawKind::table) top.reject("band", "only with law: band or hordijk");
   const bool hasBand = top.has("band");
   if (s.law.kind == LawKind::band && !hasBand) top.fail("band", "law 'band' needs the block band: {band_width, softening_modulus, softening_exponent}");
   if (hasBand) {
@@ -60,6 +89,8 @@ Scene readScene(const YamlMap& top, const SceneOverrides& o) {
       top.failAt("hordijk.initial_stiffness", e.what());
     }
   }
+
+  if (s.law.kind == LawKind::table) readTableLaw(top, ft, s.law.table);
 
   switch (s.problem) {
     case Problem::beam: {

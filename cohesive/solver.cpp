@@ -47,6 +47,7 @@ struct Trial {
   std::vector<InterfaceState> states;    // at the trial jumps
   std::vector<InterfaceResponse> responses;
   bool finite = true;
+  std::string lawFailure;  // a jump the law cannot answer (past a table's end): a failed iteration
 };
 
 double jumpOf(const InterfaceNode& i, const Eigen::VectorXd& u) { return 2.0 * i.sign * u[i.equation]; }
@@ -59,7 +60,13 @@ Trial evaluate(const HalfModel& m, const InterfaceLaw& law, const std::vector<In
   t.responses.resize(m.interface.size());
   for (std::size_t k = 0; k < m.interface.size(); ++k) {
     const InterfaceNode& i = m.interface[k];
-    const InterfaceResponse r = updateInterface(law, t.states[k], jumpOf(i, u));
+    InterfaceResponse r;
+    try {
+      r = updateInterface(law, t.states[k], jumpOf(i, u));
+    } catch (const InterfaceLawError& e) {
+      t.lawFailure = e.what();
+      return t;
+    }
     // The half model holds half the crack's energy, A phi(2 s u_n) / 2: its force s A t and
     // its stiffness 2 A dt/ddelta.
     t.internal[i.equation] += i.sign * i.area * r.traction;
@@ -128,6 +135,7 @@ SolveResult solveControlled(const HalfModel& m, const InterfaceLaw& law, const S
     double lastIncrement = INFINITY;  // |du|_inf of the last iteration
     for (iterations = 0; iterations <= s.maxIterations; ++iterations) {
       trial = evaluate(m, law, states, uTrial);
+      if (!trial.lawFailure.empty()) { reason = trial.lawFailure; break; }
       if (!trial.finite) { reason = "non-finite interface response"; break; }
       const Eigen::VectorXd residual = bulk * uTrial + trial.internal - lambdaTrial * m.loadPattern;
       const double scale = std::max(forceScale, std::abs(lambdaTrial) * m.loadPattern.cwiseAbs().maxCoeff());
