@@ -12,7 +12,7 @@ CrackPathGeometry CrackPathGeometry::forGrid(const Vec2& origin, const Vec2& cel
   g.origin = origin;
   g.cellSize = cellSize;
   const double cell = std::sqrt(cellSize[0] * cellSize[1]);
-  g.lookAhead = cell;
+  g.lookAhead = 2.0 * cell;  // docs/model.md, "Crack paths": past the points near onset ahead of a tip
   g.averaging = std::max(2.0 * cell, 5.0);  // at least 5 mm (docs/model.md, "Crack paths")
   g.exclusion = std::max(4.0 * cell, 10.0);  // at least 10 mm (docs/model.md, "Crack paths")
   g.shortestChord = 0.02 * cell;  // docs/model.md, "Crack paths"

@@ -29,7 +29,7 @@ namespace ecm::mpm {
 struct CrackPathGeometry {
   Vec2 origin = Vec2::Zero();   // the grid's first node
   Vec2 cellSize = Vec2::Ones();
-  double lookAhead = 0.0;  // how far a path reaches past its tip: one cell
+  double lookAhead = 0.0;  // how far a path reaches past its tip: two cells
   double exclusion = 0.0;  // a new crack starts no nearer than this to a path or another new root
   double averaging = 0.0;  // radius of the stress average that turns a tip
   double smallestKink = 0.0;   // (rad) a tip turns only by a kink at least this large

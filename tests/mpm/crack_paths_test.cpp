@@ -60,9 +60,10 @@ TEST(CrackPaths, AStraightPathThroughACellGivesTheCellSizeAsEffectiveSize) {
   EXPECT_DOUBLE_EQ(std::abs(c->normal[0]), 1.0);
   EXPECT_FALSE(paths.crossingAt(Vec2(1.2, 1.2)));   // the next column
   EXPECT_FALSE(paths.crossingAt(Vec2(-0.5, 1.2)));  // the column before
-  // The look-ahead crosses the cells past the tip: (0.5, 3) to (0.5, 4).
+  // The look-ahead (two cells) crosses the cells past the tip: (0.5, 3) to (0.5, 5).
   EXPECT_TRUE(paths.crossingAt(Vec2(0.7, 3.5)));
-  EXPECT_FALSE(paths.crossingAt(Vec2(0.7, 4.5)));
+  EXPECT_TRUE(paths.crossingAt(Vec2(0.7, 4.5)));
+  EXPECT_FALSE(paths.crossingAt(Vec2(0.7, 5.5)));
 }
 
 TEST(CrackPaths, APathOnAGridLineCrossesTheCellsOnOneSideOnly) {
@@ -105,7 +106,7 @@ TEST(CrackPaths, TheCrossedCellsShareThePathsLength) {
         sum += c->chord;
         EXPECT_NEAR(c->effectiveSize * c->chord, 1.0, 1e-12);
       }
-    const double length = 9.0;  // a to b, and the look-ahead's cell past b
+    const double length = 8.0 + paths.geometry().lookAhead;  // a to b, and the look-ahead past b
     EXPECT_LE(sum, length + 1e-9);
     // A straight line crosses at most (|d_x| + |d_y|) length + 2 cells; each clipped one loses < shortest.
     const int corners = static_cast<int>(std::ceil((std::abs(d[0]) + std::abs(d[1])) * length)) + 2;
@@ -187,13 +188,14 @@ TEST(CrackPaths, APathCurvesNoTighterThanItsSmallestRadius) {
 // in its look-ahead, and the crack would stall: seen on the DEN's inclined cracks).
 TEST(CrackPaths, ABandOpeningPastTheLookAheadsEndMovesTheTipToThatEnd) {
   CrackPaths paths = unitGridPaths();
+  const double lookAhead = paths.geometry().lookAhead;  // two cells
   paths.restoreArms({{{Vec2(0.5, 0.5)}, Vec2(0.0, 1.0)}});
-  paths.grow({Vec2(0.6, 0.5 + 1.4)}, {}, uniform(Voigt::Zero()));  // 1.4 ahead, the look-ahead is 1
+  paths.grow({Vec2(0.6, 0.5 + lookAhead + 0.4)}, {}, uniform(Voigt::Zero()));  // 0.4 past the look-ahead's end
   ASSERT_EQ(paths.arms()[0].points.size(), 3u);  // (past half a cell: the tip became a vertex)
-  EXPECT_NEAR(paths.arms()[0].points.back()[1], 1.5, 1e-12);
+  EXPECT_NEAR(paths.arms()[0].points.back()[1], 0.5 + lookAhead, 1e-12);
   // Farther than the look-ahead and a diagonal: not this arm's band.
-  paths.grow({Vec2(0.5, 1.5 + 1.0 + std::sqrt(2.0) + 0.01)}, {}, uniform(Voigt::Zero()));
-  EXPECT_NEAR(paths.arms()[0].points.back()[1], 1.5, 1e-12);
+  paths.grow({Vec2(0.5, 0.5 + 2.0 * lookAhead + std::sqrt(2.0) + 0.01)}, {}, uniform(Voigt::Zero()));
+  EXPECT_NEAR(paths.arms()[0].points.back()[1], 0.5 + lookAhead, 1e-12);
 }
 
 // The cells an inclined straight path crosses touch edge to edge (4-connected), but where it passes
