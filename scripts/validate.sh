@@ -56,6 +56,8 @@ declare -A scene=(
   [lpanel-medium-implicit]=data/validation/lpanel-medium-implicit.yaml
   [lpanel-fine]=data/validation/lpanel-fine.yaml
   [den-rig-coarse-tracked]=variant
+  [den-rig-coarse-tension]=variant
+  [den-rig-coarse-tension-tracked]=variant
   [den-rig-medium-tracked]=variant
   [lpanel-coarse-tracked]=variant
   [lpanel-medium-tracked]=variant
@@ -81,13 +83,19 @@ done
 # A variant: a shipped scene with its material swapped (the file and the body's material name), or
 # with tracked crack paths (docs/model.md, "Crack paths").
 variant() {
-  local name=$1 from material tracked=0
+  local name=$1 from material tracked=0 tension=0
   case "$name" in
     *-tracked) from=data/validation/${name%-tracked}.yaml; from=${from/den-rig-/den-4b-rig-}; tracked=1 ;;
   esac
-  if [[ $tracked == 1 ]]; then
+  case "$name" in
+    den-rig-coarse-tension*) from=data/validation/den-4b-rig-coarse.yaml; tension=1 ;;
+  esac
+  if [[ $tracked == 1 || $tension == 1 ]]; then
+    local solver='solver:' shear='&'
+    [[ $tracked == 1 ]] && solver='solver:\n  crack_path: tracked'
+    [[ $tension == 1 ]] && shear='    x: free   # P_s = 0: the DEN in pure tension'
     sed -e "s|{file: ../materials/|{file: $PWD/data/materials/|" -e "s|^name: .*|name: $name|" \
-        -e "s|^solver:$|solver:\n  crack_path: tracked|" "$from" > "$out/scenes/$name.yaml"
+        -e "s|^solver:$|$solver|" -e "s|^    x: {force: {type: table.*|$shear|" "$from" > "$out/scenes/$name.yaml"
     echo "$out/scenes/$name.yaml"
     return
   fi
