@@ -10,27 +10,20 @@
 #include "cohesive/report.hpp"
 #include "cohesive/scene.hpp"
 #include "cohesive/solver.hpp"
+#include "test_scenes.hpp"
 
 namespace ecm::cohesive {
 namespace {
 
 const std::filesystem::path kReference = std::filesystem::path(ECM_SOURCE_DIR) / "data/reference";
 
-struct Curve {
-  double peak = 0.0, at01 = 0.0, at02 = 0.0, finalBalance = 0.0;
-};
+using test::Curve;
 
 Curve compute(const std::string& file, double cell, double maxStep, double finalControl) {
   Scene s = readScene(kReference / file, {cell, std::nullopt});
   if (maxStep > 0.0) s.solver.maxStep = s.solver.firstStep = maxStep;
   if (finalControl > 0.0) s.solver.finalControl = finalControl;
-  const SolveResult r = solveControlled(buildModel(s), s.law, s.solver);
-  Curve c;
-  for (const StepRecord& h : r.history) c.peak = std::max(c.peak, h.load);
-  c.at01 = loadAt(r.history, 0.1).value_or(0.0);
-  c.at02 = loadAt(r.history, 0.2).value_or(0.0);
-  c.finalBalance = r.history.back().balanceError;
-  return c;
+  return test::curveOf(s);
 }
 
 // Each run once per test program (two tests share the 1.25 mm beam).

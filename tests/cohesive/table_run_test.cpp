@@ -11,25 +11,15 @@
 #include "cohesive/report.hpp"
 #include "cohesive/scene.hpp"
 #include "cohesive/solver.hpp"
+#include "test_scenes.hpp"
 
 namespace ecm::cohesive {
 namespace {
 
 const std::filesystem::path kReference = std::filesystem::path(ECM_SOURCE_DIR) / "data/reference";
 
-struct Curve {
-  double peak = 0.0, at01 = 0.0, at02 = 0.0, finalBalance = 0.0;
-};
-
-Curve curve(const Scene& s) {
-  const SolveResult r = solveControlled(buildModel(s), s.law, s.solver);
-  Curve c;
-  for (const StepRecord& h : r.history) c.peak = std::max(c.peak, h.load);
-  c.at01 = loadAt(r.history, 0.1).value_or(0.0);
-  c.at02 = loadAt(r.history, 0.2).value_or(0.0);
-  c.finalBalance = r.history.back().balanceError;
-  return c;
-}
+using test::Curve;
+Curve curve(const Scene& s) { return test::curveOf(s); }
 
 // data/reference/beam-band-node.yaml on the 2.5 mm mesh at its own steps (max CMOD step
 // 0.0002 mm, to 0.3), with its band law and with that law's envelope as a table (20001 rows to
@@ -62,18 +52,7 @@ TEST(CohesiveTable, ThePointLawsBeamBalancesItsEnergy) {
 // A bar whose table ends at 0.02 mm, pulled to 0.05 mm: the run stops at the smallest step with
 // the law's message (the opening and where the table ends), and keeps what converged.
 TEST(CohesiveTable, ARunPastTheTablesEndStopsAndNamesTheOpening) {
-  Scene s = parseScene(R"(
-name: bar
-problem: bar
-thickness: 10
-cell: 10
-material: {youngs_modulus: 32000, poisson_ratio: 0.2, tensile_strength: 3.0, fracture_energy: 0.11}
-law: band
-band: {band_width: 0.05, softening_modulus: 8.184, softening_exponent: 0.128}
-bar: {length: 50, height: 10}
-control: {final: 0.05, max_step: 0.001}
-)",
-                       "bar.yaml");
+  Scene s = test::barScene(LawKind::band, 0.05, 0.001);
   s.law.kind = LawKind::table;
   s.law.table = test::bandEnvelopeTable(s.law.band, 2000, 0.02);
   try {
