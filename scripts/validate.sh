@@ -59,8 +59,10 @@ declare -A scene=(
   [den-rig-coarse-tension]=variant
   [den-rig-coarse-tension-tracked]=variant
   [den-rig-medium-tracked]=variant
+  [den-rig-fine-tracked]=variant
   [lpanel-coarse-tracked]=variant
   [lpanel-medium-tracked]=variant
+  [lpanel-fine-tracked]=variant
 )
 runs=()
 for w in "$@"; do

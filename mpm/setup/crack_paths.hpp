@@ -4,9 +4,10 @@
 // reach onset, and grows in two arms, each a polyline from the root to a tip that reaches one
 // look-ahead past the tip. A tip moves when a point in its look-ahead opens a band, and turns by
 // the kink angle of the maximum hoop stress in the stress averaged ahead of it. A point opens a
-// band only in a grid cell that a path crosses: with the normal of the path in that cell and the
-// effective size H = cell area / the path's length in the cell, so that every cell the crack
-// crosses dissipates G_F times the crack's length in it. A point that reaches onset anywhere else
+// band only in a grid cell whose nodes lie on both sides of a path (band_kinematics.hpp): normal
+// to grad phi at the point, so that a rigid motion of one side strains the band alone and nothing
+// locks, with an effective size that makes the band dissipate G_F times the path's length. A
+// point that reaches onset anywhere else
 // stays intact (a candidate: a new root where a crack may start and none is near). Both solvers
 // keep one CrackPaths,
 // read-only while the points update and grown between updates, in particle order. Under
@@ -34,9 +35,9 @@ struct CrackPathGeometry {
   double averaging = 0.0;  // radius of the stress average that turns a tip
   double smallestKink = 0.0;   // (rad) a tip turns only by a kink at least this large
   double smallestRadius = 0.0; // a path's radius of curvature is at least this (a turn at most turnEvery / it)
-  double shortestChord = 0.0;  // a path crosses a cell only with at least this length in it
   double turnEvery = 0.0;      // a tip's direction is taken again each time it has run this far
   double interiorOverstress = 1.0;  // off a root cell, a crack starts only this far past onset
+  int pointsPerCell = 2;            // k: the points a cell is seeded with, k x k (scene.hpp)
   static CrackPathGeometry forGrid(const Vec2& origin, const Vec2& cellSize);
 };
 
@@ -57,11 +58,11 @@ struct OnsetCandidate {
   Voigt stress = Voigt::Zero();   // that stress over the overstress: on the onset surface (MPa)
 };
 
-// How a band opens in a cell a path crosses.
+// How a point's band opens in a cell of a path's band (band_kinematics.hpp).
 struct PathCrossing {
-  Vec2 normal = Vec2::UnitX();  // the normal of the path's longest piece in the cell
-  double chord = 0.0;           // the path's length in the cell (mm), look-ahead included
-  double effectiveSize = 0.0;   // H = cell area / chord (mm), Eq. (1) and Fig. 2
+  Vec2 normal = Vec2::UnitX();  // grad phi / |grad phi| at the point
+  double chord = 0.0;           // the path's length in the point's cell (mm), look-ahead included
+  double effectiveSize = 0.0;   // H = scale / |grad phi| (mm), Eq. (1): the cell's share of G_F times the path's length
 };
 
 // The stress, in units of the tensile strength, averaged over the intact points within `radius`
@@ -158,7 +159,14 @@ class CrackPaths {
   std::vector<CrackArm> arms_;
   // Lookups of the arms, so that a point's query costs no walk over every path: the crossed cells,
   // and the cells within the exclusion radius of a path.
-  std::unordered_map<CellKey, PathCrossing> crossed_;
+  struct CellBand {
+    std::uint8_t sides = 0;  // band_kinematics.hpp's NodeSides
+    double chord = 0.0;      // the path's length in the cell (mm)
+    double scale = 1.0;      // the level lines' length in the cell over the path's length it was given
+  };
+  // Below this |grad phi| times the cell size a point stays intact (H over ten cells).
+  static constexpr double kLeastGradient = 0.1;
+  std::unordered_map<CellKey, CellBand> crossed_;
   std::unordered_set<CellKey> near_;
   // The cells where a crack may start; nullopt: anywhere. Fixed at the start of a run.
   std::optional<std::unordered_set<CellKey>> rootCells_;
