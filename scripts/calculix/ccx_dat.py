@@ -7,7 +7,8 @@
 
 CalculiX prints each table as a title line, "<what> (<columns>) for set <SET> and time <T>", a
 blank line, then one row per element and integration point (element tables: two integers, then
-the values) or per node (node tables: one integer, then the values), in the format 1p,e13.6:
+the values) or per node (node tables: one integer, then the values; a set's totals, "total force
+(fx,fy,fz) for set ...", one row of values alone, key ()), in the format 1p,e13.6:
 seven significant digits, so a value read back is within 5e-7 of the computed one, relatively.
 Shears in the stress and strain tables are tensor components (sxy, exy = gamma_xy / 2), in the
 order xx, yy, zz, xy, xz, yz. `time` is the total time (the steps' periods added up).
@@ -23,7 +24,7 @@ ELEMENT_TABLES = ("stresses", "strains", "internal state variables", "equivalent
 
 
 def read_dat(path):
-    """{(what, set): [(time, {key: [values]})]}; key is (element, point) or (node,)."""
+    """{(what, set): [(time, {key: [values]})]}; key is (element, point), (node,) or () for totals."""
     blocks = {}
     rows = None
     key_width = 2
@@ -32,7 +33,9 @@ def read_dat(path):
             title = _TITLE.match(line)
             if title:
                 what = title["what"].strip()
-                key_width = 2 if what in ELEMENT_TABLES else 1
+                # a set's totals (*NODE PRINT, TOTALS=YES or ONLY: "total force (fx,fy,fz) ...") are one
+                # row of values with no node number: its key is ()
+                key_width = 0 if what.startswith("total ") else 2 if what in ELEMENT_TABLES else 1
                 rows = {}
                 blocks.setdefault((what, title["set"]), []).append((float(title["time"]), rows))
                 continue

@@ -22,6 +22,16 @@ COMPONENTS = ("eps_xx", "eps_yy", "eps_zz", "gamma_yz", "gamma_xz", "gamma_xy")
 STATE_VARIABLES = 17  # docs/fe-codes.md, STATEV
 
 
+def field(x):
+    """A number as CalculiX reads it: at most 20 characters a field (longer ones are cut, and
+    CalculiX stops with rc 201), with as many significant digits as fit (17: round-trip)."""
+    for digits in range(17, 0, -1):
+        text = f"{x:.{digits}g}"
+        if len(text) <= 20:
+            return text
+    raise ValueError(f"element_inp: {x!r} does not fit in a 20-character field")
+
+
 def cube_nodes(size):
     """C3D8's node order: the face z = 0 counter-clockwise, then the face z = size."""
     s = size
@@ -66,18 +76,18 @@ def element_input(props, size, steps, material="ABAQUS_ECM"):
     nodes = cube_nodes(size)
     lines = ["** One C3D8 element of ecm's UMAT under a homogeneous strain path. Units: mm, N, MPa.",
              "*NODE, NSET=NALL"]
-    lines += [f"{i + 1}, {x:.17g}, {y:.17g}, {z:.17g}" for i, (x, y, z) in enumerate(nodes)]
+    lines += [f"{i + 1}, {field(x)}, {field(y)}, {field(z)}" for i, (x, y, z) in enumerate(nodes)]
     lines += ["*ELEMENT, TYPE=C3D8, ELSET=EALL", "1, 1, 2, 3, 4, 5, 6, 7, 8",
               f"*MATERIAL, NAME={material}", f"*USER MATERIAL, CONSTANTS={len(props)}"]
-    lines += [", ".join(f"{p:.17g}" for p in props[i:i + 8]) for i in range(0, len(props), 8)]
+    lines += [", ".join(field(p) for p in props[i:i + 8]) for i in range(0, len(props), 8)]
     lines += ["*DEPVAR", str(STATE_VARIABLES), f"*SOLID SECTION, ELSET=EALL, MATERIAL={material}"]
     for increments, voigt in steps:
         eps = strain_tensor(voigt)
-        lines += [f"*STEP, INC={increments + 10}", "*STATIC, DIRECT", f"{1.0 / increments:.17g}, 1.", "*BOUNDARY"]
+        lines += [f"*STEP, INC={increments + 10}", "*STATIC, DIRECT", f"{field(1.0 / increments)}, 1.", "*BOUNDARY"]
         for n, x in enumerate(nodes):
             for i in range(3):
                 u = sum(eps[i][j] * x[j] for j in range(3))
-                lines.append(f"{n + 1}, {i + 1}, {i + 1}, {u:.17g}")
+                lines.append(f"{n + 1}, {i + 1}, {i + 1}, {field(u)}")
         lines += ["*EL PRINT, ELSET=EALL", "S, SDV, E", "*END STEP"]
     return "\n".join(lines) + "\n"
 

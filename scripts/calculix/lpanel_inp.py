@@ -23,7 +23,7 @@ import argparse
 import sys
 
 import ecm
-from element_inp import STATE_VARIABLES  # docs/fe-codes.md, STATEV
+from element_inp import STATE_VARIABLES, field  # docs/fe-codes.md, STATEV; field: 20 characters at most
 
 PANEL, CUT, PLATE = 500.0, 250.0, (460.0, 480.0)
 
@@ -54,10 +54,10 @@ def lpanel_input(size, thickness, props, to=1.0, increment=0.01, element="C3D8")
     number = {ij: n + 1 for n, ij in enumerate(used)}  # z = 0; z = thickness is + layer
     lines = ["** Winkler's L-panel, ecm's UMAT, one C3D8 element through the thickness. Units: mm, N, MPa.", "*NODE"]
     for (i, j), n in number.items():
-        lines.append(f"{n}, {i * size:.17g}, {j * size:.17g}, 0")
-        lines.append(f"{n + layer}, {i * size:.17g}, {j * size:.17g}, {thickness:.17g}")
+        lines.append(f"{n}, {field(i * size)}, {field(j * size)}, 0")
+        lines.append(f"{n + layer}, {field(i * size)}, {field(j * size)}, {field(thickness)}")
     ref, rot = 2 * layer + 1, 2 * layer + 2
-    lines += [f"{ref}, 470, 250, {thickness / 2:.17g}", f"{rot}, 470, 250, {thickness / 2:.17g}",
+    lines += [f"{ref}, 470, 250, {field(thickness / 2)}", f"{rot}, 470, 250, {field(thickness / 2)}",
               f"*ELEMENT, TYPE={element}, ELSET=EALL"]
     for e, (i, j) in enumerate(elements, 1):
         q = [number[(i, j)], number[(i + 1, j)], number[(i + 1, j + 1)], number[(i, j + 1)]]
@@ -69,13 +69,13 @@ def lpanel_input(size, thickness, props, to=1.0, increment=0.01, element="C3D8")
     lines += ["*NSET, NSET=PLATE"] + [f"{n}," for n in plate + [n + layer for n in plate]]
     lines += ["*NSET, NSET=LOAD", f"{ref},"]
     lines += ["*MATERIAL, NAME=ABAQUS_ECM", f"*USER MATERIAL, CONSTANTS={len(props)}",
-              ", ".join(f"{p:.17g}" for p in props[:8]), ", ".join(f"{p:.17g}" for p in props[8:]),
+              ", ".join(f"{field(p)}" for p in props[:8]), ", ".join(f"{field(p)}" for p in props[8:]),
               "*DEPVAR", str(STATE_VARIABLES), "*SOLID SECTION, ELSET=EALL, MATERIAL=ABAQUS_ECM",
               f"*RIGID BODY, NSET=PLATE, REF NODE={ref}, ROT NODE={rot}",
               "*BOUNDARY", "BASE, 1, 2, 0.", "BASE0, 3, 3, 0.", f"{ref}, 3, 3, 0.", f"{rot}, 1, 2, 0.",
               "*STEP, INC=100000", "*STATIC",
-              f"{increment:.17g}, {to:.17g}, 1e-6, {increment:.17g}",
-              "*BOUNDARY", f"{ref}, 2, 2, {to:.17g}",
+              f"{field(increment)}, {field(to)}, 1e-6, {field(increment)}",
+              "*BOUNDARY", f"{ref}, 2, 2, {field(to)}",
               "*NODE PRINT, NSET=LOAD", "U, RF",
               "*EL FILE", "SDV",
               "*END STEP",
