@@ -1,7 +1,10 @@
 #include "driver/point_driver_3d.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <sstream>
+#include <vector>
 
 namespace ecm::driver {
 
@@ -90,6 +93,42 @@ HistoryRow3 rowOf(const Material3D& m, const MaterialPoint3& p, const Voigt6& st
   return r;
 }
 
+// The largest principal stress (MPa).
+double firstPrincipal(const Voigt6& s) { return largestPrincipal(s).first; }
+
+// The argument of the maximum of a unimodal f on [lo, hi], to `tolerance` (golden section).
+template <class F>
+double goldenMaximum(const F& f, double lo, double hi, double tolerance) {
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double a = hi - g * (hi - lo), b = lo + g * (hi - lo), fa = f(a), fb = f(b);
+  for (int it = 0; it < 80 && hi - lo > tolerance; ++it) {
+    if (fa > fb) hi = b, b = a, fb = fa, a = hi - g * (hi - lo), fa = f(a);
+    else lo = a, a = b, fa = fb, b = lo + g * (hi - lo), fb = f(b);
+  }
+  return 0.5 * (lo + hi);
+}
+
+// The fraction a in (0, 1) of a piece where stressAt(a) has a maximum above `ends` (the larger of
+// its ends' stresses), or nullopt: samples evenly spaced and geometrically closer to the start
+// (where a softening band's maximum lies), then golden section next to the best, as in 2D.
+template <class F>
+std::optional<double> maximumInside(const F& stressAt, double ends) {
+  std::vector<double> as;
+  for (int k = 1; k < 16; ++k) as.push_back(k / 16.0);
+  for (double x = 1e-6; x < 1.0 / 16.0; x *= 2.0) as.push_back(x);
+  std::sort(as.begin(), as.end());
+  as.insert(as.begin(), 0.0);
+  as.push_back(1.0);
+  std::size_t top = 0;
+  double topStress = -INFINITY;
+  for (std::size_t k = 1; k + 1 < as.size(); ++k)
+    if (const double sk = stressAt(as[k]); sk > topStress) topStress = sk, top = k;
+  if (!(topStress > ends)) return std::nullopt;
+  const double a = goldenMaximum(stressAt, as[top - 1], as[top + 1], 1e-12);
+  if (!(stressAt(a) > ends)) return std::nullopt;
+  return a;
+}
+
 }  // namespace
 
 int totalIncrements(const PointScene3& scene) {
@@ -106,6 +145,7 @@ PointRun3 runPoint3D(const PointScene3& scene, const RowObserver3& observe) {
   MaterialPoint3 p;
   Voigt6 stress = Voigt6::Zero();
   double work = 0.0, dissipation = 0.0;
+  double peakSoFar = 0.0;  // the largest principal stress of the rows so far (MPa)
   int increment = 0;
   const int total = totalIncrements(scene);
   run.history.push_back(rowOf(m, p, stress, 0, 0));
@@ -159,8 +199,32 @@ PointRun3 runPoint3D(const PointScene3& scene, const RowObserver3& observe) {
             }
           }
           const Voigt6 before = qs;
+          const MaterialPoint3 from = q;
           Step o = mixedStep(m, q, qs, s.control, eTarget - q.strain, sTarget, size, options, tol);
           if (!o.ok) { ok = false; why = m.explain(o.result); break; }
+          // A maximum of the largest principal stress inside the piece, above every stress of the
+          // run so far, gets a row of its own, as in 2D (docs/inputs.md): the peak of a point
+          // whose stress rises after onset lies between rows.
+          if (from.band) {
+            const auto stateAt = [&](double a, MaterialPoint3& at) {
+              at = from;
+              return mixedStep(m, at, before, s.control, a * (eTarget - from.strain), before + a * (sTarget - before), size, options, tol);
+            };
+            const auto stressAt = [&](double a) {
+              MaterialPoint3 at;
+              const Step r = stateAt(a, at);
+              return r.ok ? firstPrincipal(r.result.stress) : -INFINITY;
+            };
+            if (const std::optional<double> a = maximumInside(stressAt, std::max(firstPrincipal(before), firstPrincipal(o.result.stress)));
+                a && stressAt(*a) > peakSoFar) {
+              MaterialPoint3 at;
+              const Step r = stateAt(*a, at);
+              HistoryRow3 row = rowOf(m, at, r.result.stress, increment, static_cast<int>(seg) + 1);
+              row.work = w + 0.5 * (before + r.result.stress).dot(r.increment);
+              row.dissipation = diss + r.result.dissipation;
+              onsetRows.push_back(row);
+            }
+          }
           iterations += o.iterations;
           w += 0.5 * (before + o.result.stress).dot(o.increment);
           diss += o.result.dissipation;
@@ -168,11 +232,15 @@ PointRun3 runPoint3D(const PointScene3& scene, const RowObserver3& observe) {
           released = released || o.result.released;
         }
         if (!ok) continue;
-        for (const HistoryRow3& r : onsetRows) run.history.push_back(r);
+        for (HistoryRow3& r : onsetRows) {
+          peakSoFar = std::max(peakSoFar, firstPrincipal(r.stress));
+          run.history.push_back(r);
+        }
         p = q;
         stress = qs;
         work = w;
         dissipation = diss;
+        peakSoFar = std::max(peakSoFar, firstPrincipal(stress));
         HistoryRow3 row = rowOf(m, p, stress, increment, static_cast<int>(seg) + 1);
         row.iterations = iterations;
         row.substeps = pieces;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "material/damage_function.hpp"
 #include "paper_constants.hpp"
@@ -49,6 +50,31 @@ TEST(PointDriver3D, UniaxialTensionFollowsTheFrozenLateralBandClosedForm) {
   }
   EXPECT_EQ(onsetRows, 1);
   EXPECT_GT(checked, 100);
+}
+
+// Whatever the number of increments, the stress maximum gets a row of its own (docs/inputs.md):
+// the largest row is the closed form's maximum of sigma_xx(x) (the test above's), not the largest
+// of the increments' ends. With 6 increments to 4e-4 the ends straddle the peak.
+TEST(PointDriver3D, TheStressMaximumGetsARowOfItsOwn) {
+  const double e = test::kE, nu = test::kNu, mu = e / (2 * (1 + nu)), lambda = e * nu / ((1 + nu) * (1 - 2 * nu));
+  const double eps0 = -nu * test::kFt / e, a11 = lambda + 2 * mu;
+  const DamageLawParams law{test::kE, test::kFt, test::kEp, test::kN};
+  const auto sigma = [&](double x) {
+    const double c = 4 * (lambda + mu) * eps0 * eps0 - 2 * damageFunction(law, x);
+    const double normal = (-2 * lambda * eps0 + std::sqrt(4 * lambda * lambda * eps0 * eps0 - a11 * c)) / a11;
+    return x * (a11 * normal + 2 * lambda * eps0);
+  };
+  double closedForm = 0.0;
+  for (double x = 1e-4; x <= 1.0; x += 1e-6) closedForm = std::max(closedForm, sigma(x));
+  for (const int increments : {6, 13, 200}) {
+    const PointScene3 s = readPointScene3(io::parseYaml(
+        kScene + "path: {preset: uniaxial_tension, strain: 4.0e-4, increments: " + std::to_string(increments) + "}\n", "s.yaml"));
+    const PointRun3 run = runPoint3D(s);
+    ASSERT_TRUE(run.completed) << run.failure;
+    double peak = 0.0;
+    for (const HistoryRow3& r : run.history) peak = std::max(peak, r.stress[0]);
+    EXPECT_NEAR(peak, closedForm, 1e-6 * test::kFt) << increments << " increments";
+  }
 }
 
 TEST(PointDriver3D, RotatedAxisAndTriaxialPresetsRun) {
