@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Eigenvalues>
 
@@ -67,7 +68,19 @@ double drivingForceValue3(const Voigt6& s, double e, double nu) {
 
 Principal3 largestPrincipal(const Voigt6& s) {
   const Eigen::SelfAdjointEigenSolver<Mat3> es(stressTensor(s));
-  return {es.eigenvalues()[2], es.eigenvectors().col(2)};
+  const Vec3 p = es.eigenvalues();
+  // Where the largest value is repeated (to round-off), any direction of its eigenspace is one:
+  // take the first of the x, y and z axes that is not normal to the eigenspace, projected onto it,
+  // as the 2D point takes x for an equibiaxial stress (docs/model.md, "Equal principal stresses").
+  const double roundOff = 64.0 * std::numeric_limits<double>::epsilon() * p.cwiseAbs().maxCoeff();
+  if (!(p[2] - p[1] <= roundOff)) return {p[2], es.eigenvectors().col(2)};
+  const int from = p[2] - p[0] <= roundOff ? 0 : 1;  // (a hydrostatic stress: every direction)
+  for (int axis = 0; axis < 3; ++axis) {
+    Vec3 d = Vec3::Zero();
+    for (int k = from; k < 3; ++k) d += es.eigenvectors()(axis, k) * es.eigenvectors().col(k);
+    if (d.norm() > 1e-6) return {p[2], d.normalized()};
+  }
+  return {p[2], es.eigenvectors().col(2)};
 }
 
 }  // namespace ecm

@@ -415,3 +415,25 @@ TEST(EffectiveSize3, SectionRuleIsTheCellSizeAlongAnAxisAndTheCubeRootRuleIsIsot
 
 }  // namespace
 }  // namespace ecm
+
+// Where the two largest principal stresses are equal, the crack normal is the first of the x, y,
+// z axes not normal to their eigenspace, projected onto it (docs/model.md, "Equal principal
+// stresses"), as the 2D point takes x for an equibiaxial stress: the same answer on every
+// machine, not the eigen-solver's arbitrary vector of the plane.
+namespace ecm {
+namespace {
+TEST(EqualPrincipalStresses, TheNormalIsTheFirstAxisProjectedOntoTheirPlane) {
+  const auto normal = [](const Voigt6& s) { return canonicalNormal3(largestPrincipal(s).firstDirection); };
+  EXPECT_NEAR((normal(Voigt6(1, 1, 0, 0, 0, 0)) - Vec3(1, 0, 0)).norm(), 0.0, 1e-12);   // sxx = syy
+  EXPECT_NEAR((normal(Voigt6(0, 1, 1, 0, 0, 0)) - Vec3(0, 1, 0)).norm(), 0.0, 1e-12);   // syy = szz
+  EXPECT_NEAR((normal(Voigt6(1, 0, 1, 0, 0, 0)) - Vec3(1, 0, 0)).norm(), 0.0, 1e-12);   // sxx = szz
+  EXPECT_NEAR((normal(Voigt6(2, 2, 2, 0, 0, 0)) - Vec3(1, 0, 0)).norm(), 0.0, 1e-12);   // hydrostatic
+  // A plane off the axes: a stress 3 (x) 3 on n1 = (0, 1, 1)/sqrt2 and n2 = (1, 0, 0): x is in it.
+  const Vec3 n1 = Vec3(0, 1, 1).normalized();
+  const Mat3 t = 3.0 * (n1 * n1.transpose() + Vec3(1, 0, 0) * Vec3(1, 0, 0).transpose());
+  EXPECT_NEAR((normal(Voigt6(t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1))) - Vec3(1, 0, 0)).norm(), 0.0, 1e-12);
+  // Distinct values keep their own direction.
+  EXPECT_NEAR((normal(Voigt6(1, 1.5, 0, 0, 0, 0)) - Vec3(0, 1, 0)).norm(), 0.0, 1e-12);
+}
+}  // namespace
+}  // namespace ecm
