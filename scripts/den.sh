@@ -202,23 +202,36 @@ done
   echo "set output 'load_displacement.png'"
   echo "set datafile separator ','"
   echo "set grid; set key top right"
-  echo "set title 'DEN (4b: P_s = 10 kN, 4a: 5 kN): tensile load P against top displacement {/Symbol d}'"
-  echo "set xlabel '{/Symbol d} (mm)'; set ylabel 'P (N)'"
+  echo "set title 'DEN (4b: P_s = 10 kN, 4a: 5 kN): tensile load P against {/Symbol d}'"
+  echo "set xlabel '{/Symbol d} (mm): the gauges across the notches (solid, as the test), the top edge (dashed)'; set ylabel 'P (N)'"
   printf "plot "
   sep=""
+  colour=1
   # The test (Nooru-Mohamed, load path 4b; data/experiments/): its delta is the gauges' across the
-  # notches, stiffer than the top edge's (docs/validation.md compares like with like).
+  # notches, stiffer than the top edge's (docs/validation.md compares like with like); each run is
+  # drawn against its own gauges where its scene has them, and against the top edge, dashed.
   if [[ -f data/experiments/nooru-mohamed-4b.txt ]]; then
     awk '!/^#/ && NF == 2 {print $1 "," $2}' data/experiments/nooru-mohamed-4b.txt >"$out/test-4b.csv"
-    printf "'test-4b.csv' using 1:2 with linespoints lw 2 lc rgb 'black' pt 7 title 'test 4b ({/Symbol d} of its gauges, not the top edge)'"
+    printf "'test-4b.csv' using 1:2 with linespoints lw 2 lc rgb 'black' pt 7 title 'test 4b ({/Symbol d} of its gauges)'"
     sep=", \\"$'\n'"     "
   fi
   for r in "${rows[@]}"; do
     set -- $r
     [[ $1 == *-smeared || $1 == *-crackband || $1 == *-tail ]] && continue  # in contrast.png, tail.png
     h=$out/$1/history.csv
-    printf "%s'%s/history.csv' every ::1 using %s:%s with lines lw 2 title '%s (%s)'" "$sep" "$1" "$(col "$h" top_uy_mm)" "$(col "$h" top_ry_N)" "$1" "$2"
+    p=$(col "$h" top_ry_N)
+    gl=$(col "$h" delta-left_mm); gr=$(col "$h" delta-right_mm)
+    if [[ -n $gl && -n $gr ]]; then
+      # The gauges' mean, zeroed at the first row of the tension (t >= 0.0008 s, as the test's
+      # delta starts at 0 when the tension starts; scripts/validation/compare.py does the same).
+      z=$(awk -F, -v l="$gl" -v r="$gr" 'NR > 1 && $1 >= 0.0008 { printf "%.17g", ($l + $r) / 2; exit }' "$h")
+      printf "%s'%s/history.csv' every ::1 using ((\$%s + \$%s) / 2 - (%s)):%s with lines lw 2 lc %d title '%s (%s), gauges'" \
+        "$sep" "$1" "$gl" "$gr" "${z:-0}" "$p" "$colour" "$1" "$2"
+      sep=", \\"$'\n'"     "
+    fi
+    printf "%s'%s/history.csv' every ::1 using %s:%s with lines lw 1 dt 2 lc %d title '%s (%s), top edge'" "$sep" "$1" "$(col "$h" top_uy_mm)" "$p" "$colour" "$1" "$2"
     sep=", \\"$'\n'"     "
+    colour=$((colour + 1))
   done
   echo
 } >"$out/load_displacement.gp"
