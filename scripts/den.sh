@@ -26,7 +26,8 @@
 # OUT_DIR/damage_RUN.png, OUT_DIR/crack_RUN.png, OUT_DIR/summary.json and the table on stdout, for
 # every run whose output is in OUT_DIR (run now or by an earlier call, so `den.sh DIR medium` adds
 # to an earlier coarse run).
-# Units: mm, N, MPa, t, s. Threads: $DEN_THREADS (default 2); binary: $DEN_BIN (default ./build/mpm/ecm-mpm).
+# Exits 1 and lists the runs of this call that did not complete (each kept in the table with its
+# status). Units: mm, N, MPa, t, s. Threads: $DEN_THREADS (default 2); binary: $DEN_BIN (default ./build/mpm/ecm-mpm).
 # Shell, awk and gnuplot only. A failed run (exit status 1) is kept in the table with its status.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -101,6 +102,7 @@ col() { head -1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }
 # A number from summary.json (flat "key": value lines as io/json_summary writes them).
 jnum() { grep -m1 "\"$2\"" "$1" | sed 's/.*: *//; s/[",]//g'; }
 
+failed=()  # the runs of this call that did not complete (listed at the end; the exit status is 1)
 for m in "${runs[@]}"; do
   scene=$(sceneOf "$m") || exit 2
   echo "== DEN $m: $scene" >&2
@@ -113,6 +115,7 @@ for m in "${runs[@]}"; do
     3) echo "warning: ecm-mpm stopped $scene with a checkpoint in $out/$m (resume with --restart)" >&2 ;;
     *) echo "error: ecm-mpm ended $scene with status $rc" >&2 ;;
   esac
+  [[ $rc == 0 ]] || failed+=("$m (exit $rc: $out/$m/summary.json)")
 done
 
 # The results of every run in OUT_DIR (run now or before), coarse to fine.
@@ -371,3 +374,8 @@ echo " sym|dD|: mean |D(x) - D(rotated x)| over particles, 180 degrees about (10
 echo " sym crk: fraction of cracked particles whose rotated image is cracked; spread: (max - min) / mean;"
 echo " end d, P/Ppk: delta at the last row and P there over the peak; the DEN study ends the pull at P/Ppk < 0.1)"
 echo "written: $out/summary.json $out/load_displacement.png $(cd "$out" && ls contrast.png tail.png damage_*.png crack_*.png 2>/dev/null | sed "s|^|$out/|" | tr '\n' ' ')"
+if [[ ${#failed[@]} -gt 0 ]]; then
+  echo "failed runs (kept in the table with their status):" >&2
+  printf '  %s\n' "${failed[@]}" >&2
+  exit 1
+fi

@@ -17,6 +17,7 @@ if [[ -f mpm/CMakeLists.txt ]]; then targets+=(ecm-mpm); fi
 cmake --build build -j2 --target "${targets[@]}"
 mkdir -p "$out"
 parts=()
+failed=()  # the parts that did not complete: listed at the end, and the exit status is 1
 
 echo "== 1. calibration of the DEN concrete (ecm-calibrate)"
 ./build/calibration/ecm-calibrate --E 32000 --nu 0.2 --ft 3.0 --GF 0.11 --h 0.05 --n 0.128 \
@@ -32,8 +33,10 @@ if [[ -x build/mpm/ecm-mpm && -f data/den/den-4b-coarse.yaml ]]; then
   echo "== 3. DEN mixed-mode fracture, coarse mesh (ecm-mpm)"
   # scripts/den.sh: the run (ecm-mpm's folder den-coarse/coarse), the load-displacement plot,
   # the damage and crack maps, the table; a failed run is kept in the table with its status.
-  scripts/den.sh "$out/den-coarse" coarse ||
+  scripts/den.sh "$out/den-coarse" coarse || {
     echo "   DEN coarse run stopped early: see $out/den-coarse/coarse/summary.json"
+    failed+=("den-coarse ($out/den-coarse/coarse/summary.json)")
+  }
   parts+=("den-coarse")
 fi
 
@@ -49,3 +52,8 @@ fi
   echo "}"
 } > "$out/summary.json"
 echo "== done: $out/summary.json, plots: $(cd "$out" && find . -maxdepth 2 -name '*.png' -path './*/*' | grep -v '/enriched-\|/smeared-' | sort | tr '\n' ' ')"
+if [[ ${#failed[@]} -gt 0 ]]; then
+  echo "failed parts (their summaries are in the summary above):" >&2
+  printf '  %s\n' "${failed[@]}" >&2
+  exit 1
+fi

@@ -11,7 +11,8 @@
 # 84 % of the peak load before it, B at the peak, C at 58 % after it); ecm-mpm writes
 # particles_t<time>.csv at each. Writes OUT_DIR/MESH/ (ecm-mpm's folder), OUT_DIR/stress_strain.png,
 # OUT_DIR/damage_MESH_{A,B,C}.png, OUT_DIR/increment_MESH_{A,B,C}.png, OUT_DIR/summary.json and
-# the table on stdout. Units: mm, N, MPa, t, s. Threads: $RVE_THREADS (default 2); binary:
+# the table on stdout; exits 1 and lists the runs of this call that did not complete. Units: mm,
+# N, MPa, t, s. Threads: $RVE_THREADS (default 2); binary:
 # $RVE_BIN (default ./build/mpm/ecm-mpm). Shell, awk and gnuplot only.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -48,6 +49,7 @@ sceneOf() {
   echo "$out/scenes/rve-$1.yaml"
 }
 
+failed=()  # the runs of this call that did not complete (listed at the end; the exit status is 1)
 for m in "${runs[@]}"; do
   scene=$(sceneOf "$m")
   echo "== RVE $m: $scene" >&2
@@ -60,6 +62,7 @@ for m in "${runs[@]}"; do
     3) echo "warning: ecm-mpm stopped $scene with a checkpoint in $out/$m (resume with --restart)" >&2 ;;
     *) echo "error: ecm-mpm ended $scene with status $rc" >&2 ;;
   esac
+  [[ $rc == 0 ]] || failed+=("$m (exit $rc: $out/$m/summary.json)")
 done
 
 col() { head -1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }
@@ -194,3 +197,8 @@ if [[ ${#rows[@]} -eq 3 && " ${rows[*]} " != *-second* ]]; then
     else print "no monotone convergence of the peak over the three meshes" }'
 fi
 echo "written: $out/summary.json $out/stress_strain.png $(cd "$out" && ls damage_*.png increment_*.png 2>/dev/null | sed "s|^|$out/|" | tr '\n' ' ')"
+if [[ ${#failed[@]} -gt 0 ]]; then
+  echo "failed runs (kept in the table with their status):" >&2
+  printf '  %s\n' "${failed[@]}" >&2
+  exit 1
+fi
