@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "mpm/explicit/checkpoint.hpp"
+#include "mpm/explicit/energy_check.hpp"
 #include "mpm/explicit/solver.hpp"
 #include "mpm/output/run_files.hpp"
 
@@ -15,7 +16,10 @@ namespace {
 class ExplicitStepper final : public Stepper {
  public:
   ExplicitStepper(const Scene& scene, const RunOptions& options)
-      : scene_(scene), solver_(scene, options.threads), nextOutput_(scene.outputInterval) {}
+      : scene_(scene), solver_(scene, options.threads), nextOutput_(scene.outputInterval) {
+    const Energies e = solver_.energies();  // at step 0, also when a checkpoint is read next
+    initialEnergy_ = e.kinetic + e.strain;
+  }
 
   const Particles& particles() const override { return solver_.particles(); }
   const Particles& kinematics() const override { return solver_.kinematics(); }
@@ -55,6 +59,7 @@ class ExplicitStepper final : public Stepper {
                            static_cast<double>(solver_.particles().bands.size())});
     return row;
   }
+  void checkEnergy() const override { checkDampingWork(solver_, initialEnergy_); }
   bool snapshotDue(std::size_t row) const override { return row % static_cast<std::size_t>(scene_.snapshotEvery) == 0; }
   bool failureKeepsConsistentState() const override { return false; }
 
@@ -110,6 +115,7 @@ class ExplicitStepper final : public Stepper {
   Solver solver_;  // throws on a scene it cannot seed, before any output
   RunBookkeeping book_;
   double nextOutput_;
+  double initialEnergy_ = 0.0;  // kinetic and strain energy at step 0 (N mm): energy_check.hpp
 };
 
 }  // namespace

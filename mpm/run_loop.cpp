@@ -213,6 +213,7 @@ class RunLoop {
   // A history row, and a VTU snapshot when the stepper says so, at the end and on `force`. The
   // row count survives a restart, so the series goes on in step.
   void output(bool forceSnapshot = false) {
+    if (!forceSnapshot) stepper_.checkEnergy();  // (a failure's row is written by the catch)
     const std::size_t row = history_->rows();
     history_->row(historyRow());
     history_->flush();

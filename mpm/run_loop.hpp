@@ -47,6 +47,9 @@ class Stepper {
   virtual void rowWritten() = 0;        // the row was written
   virtual std::vector<std::string> historyColumns() const = 0;
   virtual std::vector<double> historyRow() const = 0;
+  // At each history row, before it is written: throws SimulationError where the run's energy
+  // account says a step went unstable (explicit: mpm/explicit/energy_check.hpp).
+  virtual void checkEnergy() const {}
   // A VTU snapshot with the row of index `row` (besides the end); snapshotTaken: one was written.
   virtual bool snapshotDue(std::size_t row) const = 0;
   virtual void snapshotTaken() {}

@@ -12,6 +12,7 @@ enum class FailureKind {
   LeftGrid,         // a particle (or its shape-function support) left the background grid
   NotFinite,        // NaN or infinity in a particle's velocity, position or stress
   MaterialFailure,  // the material update did not converge even after sub-stepping
+  EnergyImbalance,  // the damping's work passed the energy put into the run: an unstable step
 };
 
 struct SimulationError : std::runtime_error {
