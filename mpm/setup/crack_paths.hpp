@@ -88,7 +88,8 @@ class CrackPaths {
   CrackPaths(CrackPathRule rule, const CrackPathGeometry& geometry, const std::vector<CellIndex>& roots);
 
   bool tracked() const { return rule_ == CrackPathRule::Tracked; }
-  // The crossing of the cell that holds x, or nullopt where no path crosses it. Pure.
+  // How a point at x opens its band: normal to grad phi there, with its effective size; nullopt
+  // where x is in no band cell, or where |grad phi| is too small to take the band's motion. Pure.
   std::optional<PathCrossing> crossingAt(const Vec2& x) const;
   // Whether a crack may start in the cell that holds x.
   bool mayRootAt(const Vec2& x) const { return !rootCells_ || rootCells_->count(cellOf(x)) > 0; }
