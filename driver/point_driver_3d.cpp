@@ -204,8 +204,9 @@ PointRun3 runPoint3D(const PointScene3& scene, const RowObserver3& observe) {
           if (!o.ok) { ok = false; why = m.explain(o.result); break; }
           // A maximum of the largest principal stress inside the piece, above every stress of the
           // run so far, gets a row of its own, as in 2D (docs/inputs.md): the peak of a point
-          // whose stress rises after onset lies between rows.
-          if (from.band) {
+          // whose stress rises after onset lies between rows. (A piece that ends cracked: its start
+          // may be a hair below onset, where the step to onset left it.)
+          if (q.band) {
             const auto stateAt = [&](double a, MaterialPoint3& at) {
               at = from;
               return mixedStep(m, at, before, s.control, a * (eTarget - from.strain), before + a * (sTarget - before), size, options, tol);
