@@ -5,6 +5,7 @@
 #include <sstream>
 #include <vector>
 
+#include "driver/golden_maximum.hpp"
 #include "driver/opening_control.hpp"
 #include "io/value_error.hpp"
 
@@ -18,18 +19,6 @@ double normalComponent(const Voigt& e, const Vec2& n) {
 }
 
 double firstPrincipalStrain(const Voigt& e) { return principalStresses(Voigt(e[0], e[1], 0.5 * e[2])).first; }
-
-// The argument of the maximum of a unimodal f on [lo, hi], to `tolerance` (golden section).
-template <class F>
-double goldenMaximum(const F& f, double lo, double hi, double tolerance) {
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double a = hi - g * (hi - lo), b = lo + g * (hi - lo), fa = f(a), fb = f(b);
-  for (int it = 0; it < 80 && hi - lo > tolerance; ++it) {
-    if (fa > fb) hi = b, b = a, fb = fa, a = hi - g * (hi - lo), fa = f(a);
-    else lo = a, a = b, fa = fb, b = lo + g * (hi - lo), fb = f(b);
-  }
-  return 0.5 * (lo + hi);
-}
 
 class Runner {
  public:

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <vector>
 
+#include "driver/golden_maximum.hpp"
+
 namespace ecm::driver {
 
 namespace {
@@ -95,18 +97,6 @@ HistoryRow3 rowOf(const Material3D& m, const MaterialPoint3& p, const Voigt6& st
 
 // The largest principal stress (MPa).
 double firstPrincipal(const Voigt6& s) { return largestPrincipal(s).first; }
-
-// The argument of the maximum of a unimodal f on [lo, hi], to `tolerance` (golden section).
-template <class F>
-double goldenMaximum(const F& f, double lo, double hi, double tolerance) {
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double a = hi - g * (hi - lo), b = lo + g * (hi - lo), fa = f(a), fb = f(b);
-  for (int it = 0; it < 80 && hi - lo > tolerance; ++it) {
-    if (fa > fb) hi = b, b = a, fb = fa, a = hi - g * (hi - lo), fa = f(a);
-    else lo = a, a = b, fa = fb, b = lo + g * (hi - lo), fb = f(b);
-  }
-  return 0.5 * (lo + hi);
-}
 
 // The fraction a in (0, 1) of a piece where stressAt(a) has a maximum above `ends` (the larger of
 // its ends' stresses), or nullopt: samples evenly spaced and geometrically closer to the start
