@@ -8,7 +8,7 @@
 namespace ecm::mpm {
 
 void checkDampingWork(const Solver& solver, double initial) {
-  const Energies e = solver.energies();
+  const RunTotals& e = solver.state().totals;
   if (!dampingOutrunsInput(e, initial)) return;
   const Particles& p = solver.kinematics();
   std::size_t fastest = 0;

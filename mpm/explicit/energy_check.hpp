@@ -19,9 +19,10 @@ namespace ecm::mpm {
 inline constexpr double kDampingWorkLimit = 1.0;
 
 // Whether the damping's work (N mm) has left [-limit, limit] times what was put in (the external
-// work and `initial`, the kinetic and strain energy at step 0). Pure.
-inline bool dampingOutrunsInput(const Energies& e, double initial) {
-  return std::abs(e.damping) > kDampingWorkLimit * std::max(e.externalWork + initial, 0.0) && e.damping != 0.0;
+// work and `initial`, the kinetic and strain energy at step 0). Pure; the run's totals alone, no
+// pass over the particles.
+inline bool dampingOutrunsInput(const RunTotals& t, double initial) {
+  return std::abs(t.damping) > kDampingWorkLimit * std::max(t.externalWork + initial, 0.0) && t.damping != 0.0;
 }
 
 // Throws SimulationError (EnergyImbalance) where dampingOutrunsInput, naming the step, the time,

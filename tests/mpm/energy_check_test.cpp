@@ -14,7 +14,7 @@ namespace ecm::mpm {
 namespace {
 
 TEST(EnergyCheck, TheDampingMayTakeWhatWasPutInAndPutNothingIn) {
-  Energies e{};
+  RunTotals e{};
   e.externalWork = 10.0;
   e.damping = 9.0;
   EXPECT_FALSE(dampingOutrunsInput(e, 0.0));
