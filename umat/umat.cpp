@@ -81,6 +81,16 @@ BandState3 readBand3(const double* s) {
   return b;
 }
 
+// A converged update whose stress, tangent or energy is not a number: the strains are beyond what
+// a double holds once multiplied by the stiffness. Failed like a non-converging update.
+std::string overflow(const Inputs& in) {
+  double largest = 0.0;
+  for (int i = 0; i < in.ntens; ++i) largest = std::max({largest, std::abs(in.stran[i]), std::abs(in.stran[i] + in.dstran[i])});
+  std::ostringstream msg;
+  msg << "the stress overflows (largest strain component " << largest << ")";
+  return msg.str();
+}
+
 std::string update3D(const Inputs& in, const Outputs& out, const Material3D& m, const UpdateOptions& options, double bigH) {
   const bool full = in.ntens == 6;
   const int* map = full ? kAbaqusToEcm6 : kAbaqusToEcm4;
@@ -90,13 +100,14 @@ std::string update3D(const Inputs& in, const Outputs& out, const Material3D& m, 
   if (out.statev[kCracked] == 1.0) p.band = readBand3(out.statev);
   const MaterialPoint3 start = p;
   const UpdateResult3 r = m.update(p, d, EffectiveSize3::fixed(bigH), options);
-  const bool ok = r.converged();
+  const bool finite = r.stress.allFinite() && r.tangent.allFinite() && std::isfinite(m.storedEnergy(p));
+  const bool ok = r.converged() && finite;
   const Voigt6 stress = ok ? r.stress : m.stress(start);
   for (int i = 0; i < in.ntens; ++i) {
     out.stress[i] = stress[map[i]];
     for (int j = 0; j < in.ntens; ++j) out.ddsdde[i + j * in.ntens] = ok ? r.tangent(map[i], map[j]) : m.stiffness()(map[i], map[j]);
   }
-  if (!ok) return m.explain(r);
+  if (!ok) return finite ? m.explain(r) : overflow(in);
   if (p.band) writeBand(out.statev, true, p.band->crackNormal, p.band->jump, p.band->onsetStrain, p.band->integrity, p.band->volumeFraction);
   out.statev[kDissipation] += r.dissipation;
   *out.sse = m.storedEnergy(p);
@@ -121,13 +132,14 @@ std::string updatePlaneStress(const Inputs& in, const Outputs& out, const Materi
   }
   const MaterialPoint start = p;
   const UpdateResult r = m.update(p, d, EffectiveSize::fixed(bigH), options);
-  const bool ok = r.converged();
+  const bool finite = r.stress.allFinite() && r.tangent.allFinite() && std::isfinite(storedEnergy2D(m, p));
+  const bool ok = r.converged() && finite;
   const Voigt stress = ok ? r.stress : m.stress(start);
   for (int i = 0; i < 3; ++i) {
     out.stress[i] = stress[i];
     for (int j = 0; j < 3; ++j) out.ddsdde[i + 3 * j] = ok ? r.tangent(i, j) : m.stiffness()(i, j);
   }
-  if (!ok) return m.explain(r);
+  if (!ok) return finite ? m.explain(r) : overflow(in);
   if (p.band) {
     const BandState& b = *p.band;
     writeBand(out.statev, true, Vec3(b.crackNormal[0], b.crackNormal[1], 0.0), Vec3(b.jump[0], b.jump[1], 0.0),
@@ -222,10 +234,62 @@ std::string propsProblem(const Inputs& in) {
   return "";
 }
 
+std::string stateProblem(const Inputs& in, const double* statev) {
+  std::ostringstream msg;
+  msg.precision(10);
+  const auto bad = [&](int i, const std::string& why) {
+    msg << "STATEV(" << i + 1 << ") = " << statev[i] << ": " << why
+        << " (set STATEV as docs/fe-codes.md says: 0, with STATEV(2) = 1)";
+    return msg.str();
+  };
+  for (int i = 0; i < in.ntens; ++i)
+    if (!std::isfinite(in.stran[i])) {
+      msg << "STRAN(" << i + 1 << ") = " << in.stran[i] << ": the strain at the start of the increment is not a number";
+      return msg.str();
+    }
+  for (int i = 0; i < kStateCount; ++i)
+    if (!std::isfinite(statev[i])) return bad(i, "not a number");
+  if (statev[kCracked] != 0.0 && statev[kCracked] != 1.0) return bad(kCracked, "must be 0 (intact) or 1 (cracked)");
+  if (statev[kDissipation] < 0.0) return bad(kDissipation, "the dissipation so far is >= 0");
+  if (statev[kCracked] == 0.0) return "";
+  if (!(statev[kIntegrity] >= 0.0 && statev[kIntegrity] <= 1.0)) return bad(kIntegrity, "a cracked point's integrity is in [0, 1]");
+  if (!(statev[kVolumeFraction] > 0.0 && statev[kVolumeFraction] < 1.0))
+    return bad(kVolumeFraction, "a cracked point's f = h / H is in (0, 1)");
+  const double length = std::hypot(statev[kNormal], statev[kNormal + 1], statev[kNormal + 2]);
+  if (std::abs(length - 1.0) > 1e-6) return bad(kNormal, "a cracked point's normal (STATEV 3-5) is a unit vector");
+  if (in.ntens == 3 && std::abs(statev[kNormal + 2]) > 1e-6)
+    return bad(kNormal + 2, "plane stress: a cracked point's normal lies in the plane (STATEV(5) = 0)");
+  return "";
+}
+
+std::string incrementProblem(const Inputs& in, bool& fatal) {
+  std::ostringstream msg;
+  msg.precision(10);
+  fatal = false;
+  for (int i = 0; i < in.ntens; ++i)
+    if (!std::isfinite(in.dstran[i])) {
+      msg << "DSTRAN(" << i + 1 << ") = " << in.dstran[i] << ": the strain increment is not a number";
+      return msg.str();
+    }
+  if (!in.drot) return "";
+  Eigen::Matrix3d r;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) r(i, j) = in.drot[i + 3 * j];
+  if (!r.allFinite()) return "DROT is not a number";
+  const double off = (r.transpose() * r - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (off > 1e-6 || r.determinant() < 0.0) {
+    fatal = true;
+    msg << "DROT is not a rotation (|R^T R - I| = " << off << ", det R = " << r.determinant() << ")";
+    return msg.str();
+  }
+  return "";
+}
+
 std::string update(const Inputs& in, const Outputs& out, bool& fatal) {
   fatal = true;
   if (std::string why = propsProblem(in); !why.empty()) return why;
-  fatal = false;
+  if (std::string why = stateProblem(in, out.statev); !why.empty()) return why;
+  if (std::string why = incrementProblem(in, fatal); !why.empty()) return why;
   if (in.drot) rotateBandState(out.statev, in.drot);  // NLGEOM: the band turns with the material
   UpdateOptions options(in.props[kSnapBack] == 1.0 ? SnapBackPolicy::Release : SnapBackPolicy::Stop, true);
   options.substepLevels = in.nprops > kSubstepLevels ? static_cast<int>(in.props[kSubstepLevels]) : 10;

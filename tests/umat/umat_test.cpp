@@ -214,6 +214,43 @@ TEST(Umat, BadPropsStopTheAnalysisWithTheReason) {
   EXPECT_EXIT(Caller(2, 2, concreteProps(10.0)).call(std::vector<double>(4, 0.0)), ::testing::ExitedWithCode(2), "NSHR");
 }
 
+TEST(Umat, WhatAFiniteElementCodeCouldPassWrongIsRefusedByName) {
+  // Found by fuzz/fuzz_umat.cpp: each of these was accepted before (NaN stresses, a normal that
+  // is not one, a band state no update writes).
+  const double nan = std::nan("");
+  // A strain increment that is not a number (a diverging global Newton): a smaller increment is
+  // asked for and nothing changes.
+  Caller c(3, 3, concreteProps(10.0));
+  c.commit({1e-5, 0, 0, 0, 0, 0});
+  const Caller::Trial t = c.call({nan, 0, 0, 0, 0, 0});
+  EXPECT_EQ(t.pnewdt, 0.5);
+  EXPECT_EQ(t.statev, c.statev);
+  EXPECT_EQ(t.stress, c.stress);
+  // Nor is a rotation that is not a number; one that is not a rotation stops the analysis.
+  const double nanRotation[9] = {nan, 0, 0, 0, 1, 0, 0, 0, 1}, shear[9] = {1, 0, 0, 0.5, 1, 0, 0, 0, 1};
+  EXPECT_EQ(c.call({1e-6, 0, 0, 0, 0, 0}, nanRotation).pnewdt, 0.5);
+  EXPECT_EXIT(c.call({1e-6, 0, 0, 0, 0, 0}, shear), ::testing::ExitedWithCode(2), "DROT is not a rotation");
+  // STATEV and STRAN that no update of ecm's writes (an initial condition, a corrupted restart)
+  // stop it, naming the entry (1-based, as in the input deck).
+  Caller bad = c;
+  bad.statev[kCracked] = 1.0, bad.statev[kVolumeFraction] = 0.005;  // cracked, with a zero normal
+  EXPECT_EXIT(bad.call({1e-6, 0, 0, 0, 0, 0}), ::testing::ExitedWithCode(2), "STATEV\\(3\\) = 0: a cracked point's normal");
+  bad = c;
+  bad.statev[kCracked] = 0.5;
+  EXPECT_EXIT(bad.call({1e-6, 0, 0, 0, 0, 0}), ::testing::ExitedWithCode(2), "STATEV\\(1\\) = 0.5");
+  bad = c;
+  bad.statev[kJump + 1] = nan;
+  EXPECT_EXIT(bad.call({1e-6, 0, 0, 0, 0, 0}), ::testing::ExitedWithCode(2), "STATEV\\(7\\) = nan: not a number");
+  bad = c;
+  bad.stran[2] = nan;
+  EXPECT_EXIT(bad.call({1e-6, 0, 0, 0, 0, 0}), ::testing::ExitedWithCode(2), "STRAN\\(3\\) = nan");
+  // Plane stress: a cracked point's normal is in the plane.
+  Caller plane(2, 1, concreteProps(10.0));
+  plane.statev[kCracked] = 1.0, plane.statev[kNormal] = 0.6, plane.statev[kNormal + 2] = 0.8;
+  plane.statev[kVolumeFraction] = 0.005;
+  EXPECT_EXIT(plane.call({1e-6, 0, 0}), ::testing::ExitedWithCode(2), "STATEV\\(5\\) = 0.8: plane stress");
+}
+
 }  // namespace
 }  // namespace ecm
 
