@@ -55,6 +55,7 @@ class RunLoop {
         checkpointFile_(checkpointPath(options.outputDir)), lastCheckpoint_(start_) {
     result_.particles = stepper.particles().size();
     gaugePoints_ = locateGauges(scene, stepper.particles());  // from the seed positions: also after a restart
+    platenPeaks_.assign(scene.platens.size(), Eigen::Vector3d::Zero());
     if (options.restart) readRestart();  // before anything in the folder is touched
     io::prepareOutputDir(options.outputDir);
     openOutputs();
@@ -64,7 +65,6 @@ class RunLoop {
     }
     for (const auto& c : scene.conditions) anyDriven_ = anyDriven_ || isDriven(c);
     for (const auto& p : scene.platens) anyDriven_ = anyDriven_ || displacementDriven(p, kPlatenX) || displacementDriven(p, kPlatenY);
-    platenPeaks_.assign(scene.platens.size(), Eigen::Vector3d::Zero());
   }
 
   RunResult execute() {
@@ -254,12 +254,16 @@ class RunLoop {
 
   // --- checkpoint ---
   void readRestart() {
-    if (!scene_.platens.empty()) throw CheckpointError("a scene with platens cannot be resumed: checkpoints do not hold the platens' state");
     stepper_.readCheckpoint(checkpointFile_, options_.sceneHash);
     const RunBook& book = stepper_.book();
     result_.restartedFrom = stepper_.steps();
     result_.peakLoad = book.peakLoad;
     watch_.peak = book.stopWatchPeak;
+    if (book.platenPeaks.size() != platenPeaks_.size())
+      throw CheckpointError("checkpoint '" + checkpointFile_.string() + "': it has the peaks of " +
+                            std::to_string(book.platenPeaks.size()) + " platens, the scene " +
+                            std::to_string(platenPeaks_.size()));
+    platenPeaks_ = book.platenPeaks;
     checkpointStep_ = stepper_.steps();
     // Particle snapshots behind the checkpoint are done.
     while (nextParticleSnapshot_ < scene_.particleSnapshots.size() &&
@@ -272,15 +276,12 @@ class RunLoop {
            (every.everyMinutes > 0.0 && secondsSince(lastCheckpoint_) >= 60.0 * every.everyMinutes);
   }
   void checkpoint() {
-    // The checkpoint format does not hold the platens' state (mpm/scene/platen.hpp): a scene with
-    // platens writes none (Scene::validate refuses its checkpoint settings; stops and failures
-    // leave no checkpoint to resume from).
-    if (!scene_.platens.empty()) return;
     if (checkpointStep_ == stepper_.steps()) return;
     history_->flush();
     RunBook& book = stepper_.book();
     book.peakLoad = result_.peakLoad;
     book.stopWatchPeak = watch_.peak;
+    book.platenPeaks = platenPeaks_;
     book.history = {history_->bytes(), history_->digest(), history_->rows()};
     if (snapshots_) book.snapshotTimes = snapshots_->times();
     stepper_.writeCheckpoint(checkpointFile_, options_.sceneHash);

@@ -18,6 +18,8 @@
 # compare.json), OUT_DIR/den.png and OUT_DIR/lpanel.png (ecm against the tests), OUT_DIR/summary.json
 # and the tables on stdout. Units: mm, N, MPa, t, s.
 # Threads: $VALIDATE_THREADS (default 2); binary: $VALIDATE_BIN (default ./build/mpm/ecm-mpm).
+# A run stopped with a checkpoint (Ctrl-C or a signal: ecm-mpm writes one as it stops) is resumed
+# from it when the script is run again with the same OUT_DIR.
 # Exit status: 0 when every run completed and has its comparison; 1 otherwise, with the failed
 # runs listed at the end. $VALIDATE_KNOWN_FAILURES (run names, space-separated) lists runs known to
 # fail: they are reported, not counted, and one that completes is counted (take it off the list).
@@ -127,7 +129,12 @@ for r in "${runs[@]}"; do
   [[ $s == variant ]] && s=$(variant "$r")
   echo "== $r ($s)" >&2
   start=$SECONDS
-  "$bin" "$s" --out "$out/$r" --threads "$threads" --no-vtu -q
+  if [[ -f $out/$r/checkpoint.bin ]]; then  # stopped before (Ctrl-C, a signal, --max-steps): resumed
+    echo "$r: resuming from $out/$r/checkpoint.bin" >&2
+    "$bin" "$s" --restart "$out/$r" --threads "$threads" --no-vtu -q
+  else
+    "$bin" "$s" --out "$out/$r" --threads "$threads" --no-vtu -q
+  fi
   code=$?
   echo "$r: exit $code, $((SECONDS - start)) s" >&2
   if [[ " ${VALIDATE_KNOWN_FAILURES:-} " == *" $r "* ]]; then

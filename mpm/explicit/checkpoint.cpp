@@ -37,6 +37,7 @@ void writeCheckpoint(const std::filesystem::path& path, const Solver& solver, co
   e.count(s.deferred.size());
   e.array(s.deferred);
 
+  checkpoint::putPlatens(e, solver.state().platens);
   checkpoint::putParticles(e, solver.particles());
   solver.state().crackPaths.encode(e);
   const ScatterOrder& order = solver.state().order;  // the scatter's plan and measured rows
@@ -86,6 +87,7 @@ RunBookkeeping readCheckpoint(const std::filesystem::path& path, Solver& solver,
     refuse("its time step " + std::to_string(s.timeStep) + " s differs from the scene's " +
            std::to_string(solver.timeStep()) + " s (a material file or the grid changed)");
 
+  checkpoint::getPlatens(d, solver.editState().platens);
   checkpoint::getParticles(d, solver.editParticles(), solver.materials().size(), where);
   solver.editState().crackPaths.decode(d);
   std::vector<std::int32_t> rows;

@@ -5,7 +5,7 @@
 // snapshot times, peak load). Written atomically and durably (checkpoint.bin.tmp, fsync, rename),
 // so a crash while writing leaves the previous checkpoint usable.
 //
-// Format (version 6; numbers in the machine's byte order, checked by a byte-order mark):
+// Format (version 7; numbers in the machine's byte order, checked by a byte-order mark):
 //   header, 32 bytes: "ECMMPMCK" | u32 version | u32 0x01020304 | u64 payload bytes |
 //                     u64 FNV-1a 64 of the payload
 //   payload: u64 scene file hash | i32 threads |
@@ -13,6 +13,7 @@
 //              i64 sub-stepped updates, snap-back releases | u64 conditions, each f64 reaction x y,
 //              prescribed displacement x y | u64 loads, each f64 applied force x y |
 //              u64 d, u32 deferred particles d (USL: the last step's deferred points, index order)
+//            platens: u64 q, each f64 displacement 3, force 3, velocity 3 (x, y, rotation) |
 //            particles: u64 n | f64 position 2n, origin 2n, velocity 2n, mass n, volume n,
 //              strain 3n, stress 3n, strain increment 3n | u8 material n | i32 band n |
 //              u64 m (0 or n), f64 integrity m | u64 bands, each f64 crack normal 2, jump 2,
@@ -22,7 +23,8 @@
 //              f64 direction x y |
 //            scatter order (mpm/explicit/scatter_order.hpp): u64 chunks c, each i32 measured rows lo, hi,
 //              planned rows lo, hi
-//            run: f64 next output time, peak load, stop_when peak | u64 history.csv bytes, FNV-1a 64, rows |
+//            run: f64 next output time, peak load, stop_when peak | u64 q, f64 largest |force| 3 of
+//              each platen | u64 history.csv bytes, FNV-1a 64, rows |
 //              u64 snapshots, f64 their times
 // The per-step caches (grid fields, shape-function stencils) are not stored: every step
 // rebuilds them before use.
@@ -39,8 +41,8 @@
 namespace ecm::mpm {
 
 // 2: the USL deferred list; 3: the stop_when peak; 4: the second bands; 5: the scatter order;
-// 6: the crack paths
-inline constexpr std::uint32_t kCheckpointVersion = 6;
+// 6: the crack paths; 7: the platens
+inline constexpr std::uint32_t kCheckpointVersion = 7;
 
 // What an explicit run carries besides the solver: the run loop's book and the time of the next
 // output row.

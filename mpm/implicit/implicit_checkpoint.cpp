@@ -39,12 +39,24 @@ void writeImplicitCheckpoint(const std::filesystem::path& path, const ImplicitSo
     for (Eigen::Index c = 0; c <= k.cols(); ++c) e.put(static_cast<std::int32_t>(k.outerIndexPtr()[c]));
     for (Eigen::Index i = 0; i < k.nonZeros(); ++i) e.put(static_cast<std::int32_t>(k.innerIndexPtr()[i]));
     for (Eigen::Index i = 0; i < k.nonZeros(); ++i) e.put(k.valuePtr()[i]);
+    e.put(static_cast<std::uint8_t>(s.factoredReduced));
+    e.count(s.platenLayout.size());
+    for (const auto& layout : s.platenLayout)
+      for (const bool prescribed : layout) e.put(static_cast<std::uint8_t>(prescribed));
+    e.count(s.tieLayout.size());
+    for (const NodeTie& tie : s.tieLayout) {
+      e.put(tie.node);
+      e.put(static_cast<std::int32_t>(tie.sources));
+      for (const std::int32_t source : tie.source) e.put(source);
+      for (const double c : tie.coefficient) e.put(c);
+    }
   }
   const std::vector<double> lastIncrement(s.lastIncrement.data(), s.lastIncrement.data() + s.lastIncrement.size());
   e.count(lastIncrement.size());
   e.array(lastIncrement);
   e.put(s.lastLoadFactorIncrement);
   e.put(s.lastOpening);
+  checkpoint::putPlatens(e, solver.platens());
   checkpoint::putParticles(e, solver.particles());
   solver.crackPaths().encode(e);
   e.put(run.progress);
@@ -95,12 +107,24 @@ ImplicitBookkeeping readImplicitCheckpoint(const std::filesystem::path& path, Im
     if (!valid) refuse("corrupted (its tangent's indices)");
     s.factored = Eigen::Map<const Eigen::SparseMatrix<double>>(rows, rows, static_cast<Eigen::Index>(nnz), outer.data(),
                                                                inner.data(), values.data());
+    s.factoredReduced = d.get<std::uint8_t>() != 0;
+    s.platenLayout.resize(d.count(3));
+    for (auto& layout : s.platenLayout)
+      for (bool& prescribed : layout) prescribed = d.get<std::uint8_t>() != 0;
+    s.tieLayout.resize(d.count(6 * sizeof(std::int32_t) + 4 * sizeof(double)));
+    for (NodeTie& tie : s.tieLayout) {
+      tie.node = d.get<std::int32_t>();
+      tie.sources = d.get<std::int32_t>();
+      for (std::int32_t& source : tie.source) source = d.get<std::int32_t>();
+      for (double& c : tie.coefficient) c = d.get<double>();
+    }
   }
   std::vector<double> lastIncrement;
   d.array(lastIncrement, d.count(sizeof(double)));
   s.lastIncrement = Eigen::Map<const Eigen::VectorXd>(lastIncrement.data(), static_cast<Eigen::Index>(lastIncrement.size()));
   s.lastLoadFactorIncrement = d.get<double>();
   s.lastOpening = d.get<double>();
+  checkpoint::getPlatens(d, solver.editPlatens());
   checkpoint::getParticles(d, solver.editParticles(), solver.setup().materials.size(), where);
   solver.editCrackPaths().decode(d);
   run.progress = d.get<double>();

@@ -3,18 +3,20 @@
 // run's (mpm/explicit/checkpoint.hpp) but with the implicit solver's state, so a restarted run continues
 // bitwise as the uninterrupted one, on any thread count. Written atomically and durably.
 //
-// Format (version 5; numbers in the machine's byte order):
+// Format (version 6; numbers in the machine's byte order):
 //   header, 32 bytes: "ECMIMPCK" | u32 version | u32 0x01020304 | u64 payload bytes | u64 FNV-1a 64
 //   payload: u64 scene file hash | i32 threads |
 //            solver: f64 time, load factor, next piece (pseudo-time), next opening (mm) | i64 steps | f64 external work, internal
 //              work, dissipated | i64 snap-back releases | u64 conditions, each f64 reaction x y,
 //              prescribed displacement x y |
 //            geometry: u64 g, i32 stencil first node g | u64 c, u8 prescribed c |
-//              factorised tangent: i64 rows (0: none), u64 nnz, i32 outer rows+1, i32 inner nnz, f64 nnz |
+//              factorised tangent: i64 rows (0: none), u64 nnz, i32 outer rows+1, i32 inner nnz, f64 nnz,
+//                u8 of reduced unknowns, u64 q, u8 3 of each platen (its prescribed DOFs), u64 t, each
+//                node tie i32 node, sources, source 4, f64 coefficient 4 (mpm/implicit/node_ties.hpp) |
 //            indirect control: u64 i, f64 the last step's increments i | f64 last load factor increment,
 //              last opening |
-//            particles and crack paths (as mpm/explicit/checkpoint.hpp) |
-//            run: f64 progress, next snapshot, peak load, stop_when peak, linear-solve seconds | i64 iterations,
+//            platens, particles and crack paths (as mpm/explicit/checkpoint.hpp) |
+//            run: f64 progress, next snapshot, peak load, stop_when peak, u64 q, f64 3 of each platen, linear-solve seconds | i64 iterations,
 //              halvings, releases, factorisations, most iterations in a step, relaxed steps, Krylov iterations |
 //              u64 history.csv bytes, FNV-1a 64, rows | u64 snapshots, f64 their times
 #include <cstdint>
@@ -28,8 +30,9 @@
 namespace ecm::mpm {
 
 // 2: the adaptive opening step, the stop_when peak; 3: the last step's increments (indirect control);
-// 4: the Krylov iterations on the kept factorisation; 5: the crack paths
-inline constexpr std::uint32_t kImplicitCheckpointVersion = 5;
+// 4: the Krylov iterations on the kept factorisation; 5: the crack paths; 6: the platens, and the
+// reduction a factorised tangent of reduced unknowns was made for
+inline constexpr std::uint32_t kImplicitCheckpointVersion = 6;
 
 // What an implicit run carries besides the solver: the run loop's book, the progress and the
 // solver's counters.

@@ -303,7 +303,11 @@ ImplicitSolver::SavedState ImplicitSolver::saved() const {
   }
   for (const Stencil& st : geometry_.stencils) s.stencilBases.push_back(st.base);
   s.prescribed = geometry_.prescribed;
-  if (luPattern_ >= 0 && luPattern_ == factorKey()) s.factored = factored_;
+  if (luPattern_ >= 0 && luPattern_ == factorKey()) {
+    s.factored = factored_;
+    s.factoredReduced = factoredReduced_;
+    if (factoredReduced_) s.platenLayout = platenLayout_, s.tieLayout = tieLayout_;
+  }
   s.lastIncrement = lastIncrement_, s.lastLoadFactorIncrement = lastLoadFactorIncrement_, s.lastOpening = lastOpening_;
   return s;
 }
@@ -336,14 +340,32 @@ void ImplicitSolver::restore(const SavedState& s) {
     throw std::invalid_argument("its step geometry has a stencil outside the grid");
   if (s.factored.size() == 0) return;
   const Eigen::SparseMatrix<double>& k = s.factored;
-  const Eigen::SparseMatrix<double>& pattern = geometry_.pattern;
-  const bool samePattern = k.rows() == pattern.rows() && k.cols() == pattern.cols() && k.nonZeros() == pattern.nonZeros() &&
-                           std::equal(k.outerIndexPtr(), k.outerIndexPtr() + k.cols() + 1, pattern.outerIndexPtr()) &&
-                           std::equal(k.innerIndexPtr(), k.innerIndexPtr() + k.nonZeros(), pattern.innerIndexPtr());
-  if (!samePattern) throw std::invalid_argument("its factorised tangent does not fit its step geometry");
-  if (settings_.linearSolver == LinearSolverKind::Amg) lu_.setComponents(unknownComponents(geometry_.dofs, nullptr));
+  std::optional<UnknownReduction> reduction;
+  if (s.factoredReduced) {
+    // Of reduced unknowns: the layout it was made for becomes the solver's, so that the next step
+    // reuses it exactly when the saved run did.
+    if (s.platenLayout.size() != platens_.size()) throw std::invalid_argument("its platen layout does not fit the scene's platens");
+    const auto onGrid = [&](std::int32_t node) { return node >= 0 && node < setup_.scene.grid.nodeCount(); };
+    for (const NodeTie& tie : s.tieLayout) {
+      bool fits = onGrid(tie.node) && tie.sources >= 1 && tie.sources <= 4;
+      for (int i = 0; fits && i < tie.sources; ++i) fits = onGrid(tie.source[static_cast<std::size_t>(i)]);
+      if (!fits) throw std::invalid_argument("its node ties do not fit the scene's grid");
+    }
+    platenLayout_ = s.platenLayout, tieLayout_ = s.tieLayout, ++reductionLayouts_;
+    reduction = unknownReduction(setup_.scene, platens_, geometry_.dofs, platenLayout_, tieLayout_);
+    if (k.rows() != reduction->reduced() || k.cols() != reduction->reduced())
+      throw std::invalid_argument("its factorised tangent does not fit its step geometry");
+  } else {
+    const Eigen::SparseMatrix<double>& pattern = geometry_.pattern;
+    const bool samePattern = k.rows() == pattern.rows() && k.cols() == pattern.cols() && k.nonZeros() == pattern.nonZeros() &&
+                             std::equal(k.outerIndexPtr(), k.outerIndexPtr() + k.cols() + 1, pattern.outerIndexPtr()) &&
+                             std::equal(k.innerIndexPtr(), k.innerIndexPtr() + k.nonZeros(), pattern.innerIndexPtr());
+    if (!samePattern) throw std::invalid_argument("its factorised tangent does not fit its step geometry");
+  }
+  if (settings_.linearSolver == LinearSolverKind::Amg) lu_.setComponents(unknownComponents(geometry_.dofs, reduction ? &*reduction : nullptr));
   if (!lu_.factorize(k)) throw std::invalid_argument("its factorised tangent is singular");
   factored_ = k;
+  factoredReduced_ = s.factoredReduced;
   luPattern_ = factorKey();
 }
 
@@ -363,7 +385,7 @@ bool ImplicitSolver::factorize(const Eigen::SparseMatrix<double>& k, Attempt& a)
   }
   const bool ok = lu_.factorize(k);
   luPattern_ = ok ? factorKey() : -1;
-  if (ok) factored_ = k;
+  if (ok) factored_ = k, factoredReduced_ = a.reduction.has_value();
   a.report.linearSolveSeconds += omp_get_wtime() - start;
   a.report.factorizations++;
   return ok;

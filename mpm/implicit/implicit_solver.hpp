@@ -85,6 +85,11 @@ class ImplicitSolver {
     std::vector<std::int32_t> stencilBases;
     std::vector<std::uint8_t> prescribed;
     Eigen::SparseMatrix<double> factored;
+    // When it is of reduced unknowns (platens, node ties: mpm/implicit/unknown_reduction.hpp), the
+    // reduction's layout it was made for.
+    bool factoredReduced = false;
+    std::vector<std::array<bool, 3>> platenLayout;
+    std::vector<NodeTie> tieLayout;
     // Indirect control: the last step's increments (empty, 0: none).
     Eigen::VectorXd lastIncrement;
     double lastLoadFactorIncrement = 0.0, lastOpening = 0.0;
@@ -101,6 +106,7 @@ class ImplicitSolver {
   const Particles& particles() const { return particles_; }
   const std::vector<ConditionState>& conditions() const { return conditions_; }
   const std::vector<PlatenState>& platens() const { return platens_; }
+  std::vector<PlatenState>& editPlatens() { return platens_; }
   const StepSetup& setup() const { return setup_; }
   Energies energies() const;
   // The internal work (N mm): sum_p V int sigma : d eps, trapezoidal per step. External work minus
@@ -160,6 +166,7 @@ class ImplicitSolver {
   long reductionLayouts_ = 0;
   long factorKey() const { return geometry_.patternBuilds + (reductionLayouts_ << 32); }
   Eigen::SparseMatrix<double> factored_;  // that tangent (a checkpoint stores it)
+  bool factoredReduced_ = false;          // of the unknowns of platenLayout_ and tieLayout_
   CrackPaths crackPaths_;  // where enriched points may open bands (docs/model.md, "Crack paths")
   StepGeometry geometry_;  // of the committed state after `geometryStep_` steps (-1: none)
   long geometryStep_ = -1;

@@ -193,12 +193,17 @@ std::size_t getConditions(Decoder& d, std::vector<Vec2>& reactions, std::vector<
 void putPeaks(Encoder& e, const RunBook& run) {
   e.put(run.peakLoad);
   e.put(run.stopWatchPeak);
+  e.count(run.platenPeaks.size());
+  for (const Eigen::Vector3d& p : run.platenPeaks) e.put<3>(p);
 }
 
 void getPeaks(Decoder& d, RunBook& run) {
   run.peakLoad = d.get<double>();
   run.stopWatchPeak = d.get<double>();
+  run.platenPeaks.resize(d.count(3 * sizeof(double)));
+  for (Eigen::Vector3d& p : run.platenPeaks) d.get<3>(p);
 }
+
 
 void putOutputs(Encoder& e, const RunBook& run) {
   e.put(run.history.bytes);

@@ -33,6 +33,7 @@ inline std::filesystem::path checkpointPath(const std::filesystem::path& dir) { 
 struct RunBook {
   double peakLoad = 0.0;              // N
   double stopWatchPeak = 0.0;         // N: the stop_when watch's peak (mpm/scene/stop_when.hpp)
+  std::vector<Eigen::Vector3d> platenPeaks;  // per platen: the largest |force| of each degree of freedom so far
   io::CsvWriter::Resume history;      // history.csv up to the checkpoint
   std::vector<double> snapshotTimes;  // the VTU snapshots so far (s; implicit runs: their progress)
   int threads = 0;                    // of the solver that wrote it (read only)
@@ -133,12 +134,35 @@ int getHead(Decoder& d, std::uint64_t sceneHash, const std::string& where);
 // turn); getConditions returns the count.
 void putConditions(Encoder& e, const std::vector<Vec2>& reactions, const std::vector<Vec2>& displacements);
 std::size_t getConditions(Decoder& d, std::vector<Vec2>& reactions, std::vector<Vec2>& displacements);
-// The run loop's peaks (peak load, stop_when peak), and its outputs (history.csv's length, hash
+// The run loop's peaks (peak load, stop_when peak, the platens' peak forces), and its outputs (history.csv's length, hash
 // and rows, the snapshot times), as both formats store them.
 void putPeaks(Encoder& e, const RunBook& run);
 void getPeaks(Decoder& d, RunBook& run);
 void putOutputs(Encoder& e, const RunBook& run);
 void getOutputs(Decoder& d, RunBook& run);
+
+// Where each platen is, how fast it moves and what it puts on the specimen (PlatenState of
+// mpm/setup/step_setup.hpp; its nodes and reference point come from the scene). getPlatens
+// refuses a count that is not the scene's.
+template <class Platen>
+void putPlatens(Encoder& e, const std::vector<Platen>& platens) {
+  e.count(platens.size());
+  for (const Platen& p : platens) {
+    e.put<3>(p.displacement);
+    e.put<3>(p.force);
+    e.put<3>(p.velocity);
+  }
+}
+template <class Platen>
+void getPlatens(Decoder& d, std::vector<Platen>& platens) {
+  const std::size_t n = d.count(9 * sizeof(double));
+  if (n != platens.size()) d.fail("it has " + std::to_string(n) + " platens, the scene " + std::to_string(platens.size()));
+  for (Platen& p : platens) {
+    d.get<3>(p.displacement);
+    d.get<3>(p.force);
+    d.get<3>(p.velocity);
+  }
+}
 
 // The particle arrays and band states (format in mpm/explicit/checkpoint.hpp, "particles").
 void putParticles(Encoder& e, const Particles& p);

@@ -282,8 +282,6 @@ void validatePlatens(const Scene& s) {
       requireRange(key + "." + names[d] + ".free_until", dof.freeUntil, 0.0, INFINITY, true, false);
     }
   }
-  if (!s.platens.empty() && (s.checkpoint.everySteps > 0 || s.checkpoint.everyMinutes > 0.0))
-    throw ValueError("checkpoint", "checkpoints do not yet hold the platens' state: a scene with platens cannot write them");
 }
 
 }  // namespace
