@@ -109,6 +109,7 @@ std::string update3D(const Inputs& in, const Outputs& out, const Material3D& m, 
   }
   if (!ok) return finite ? m.explain(r) : overflow(in);
   if (p.band) writeBand(out.statev, true, p.band->crackNormal, p.band->jump, p.band->onsetStrain, p.band->integrity, p.band->volumeFraction);
+  else out.statev[kDamage] = 0.0;  // an output: written whatever the caller set
   out.statev[kDissipation] += r.dissipation;
   *out.sse = m.storedEnergy(p);
   *out.spd = out.statev[kDissipation];
@@ -144,6 +145,8 @@ std::string updatePlaneStress(const Inputs& in, const Outputs& out, const Materi
     const BandState& b = *p.band;
     writeBand(out.statev, true, Vec3(b.crackNormal[0], b.crackNormal[1], 0.0), Vec3(b.jump[0], b.jump[1], 0.0),
               fromInPlane(b.onsetStrain), b.integrity, b.volumeFraction);
+  } else {
+    out.statev[kDamage] = 0.0;  // an output: written whatever the caller set
   }
   out.statev[kDissipation] += r.dissipation;
   *out.sse = storedEnergy2D(m, p);

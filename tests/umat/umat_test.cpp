@@ -244,6 +244,12 @@ TEST(Umat, WhatAFiniteElementCodeCouldPassWrongIsRefusedByName) {
   bad = c;
   bad.stran[2] = nan;
   EXPECT_EXIT(bad.call({1e-6, 0, 0, 0, 0, 0}), ::testing::ExitedWithCode(2), "STRAN\\(3\\) = nan");
+  // An increment whose stress overflows a double is a failed update, not an infinite stress.
+  EXPECT_EQ(c.call({1.7e308, 0, 0, 0, 0, 0}).pnewdt, 0.5);
+  // STATEV(17), D, is an output: an intact point writes 0 over whatever the caller set.
+  Caller stale = c;
+  stale.statev[kDamage] = -5.0;
+  EXPECT_EQ(stale.call({1e-6, 0, 0, 0, 0, 0}).statev[kDamage], 0.0);
   // Plane stress: a cracked point's normal is in the plane.
   Caller plane(2, 1, concreteProps(10.0));
   plane.statev[kCracked] = 1.0, plane.statev[kNormal] = 0.6, plane.statev[kNormal + 2] = 0.8;
