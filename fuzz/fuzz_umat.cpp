@@ -56,6 +56,14 @@ void print(const char* name, const double* v, int n) {
   std::fprintf(stderr, "\n");
 }
 
+void broken_print(int call) {
+  std::fprintf(stderr, "call %d\n", call);
+  print("PROPS", seen.props, seen.nprops);
+  print("STRAN", seen.stran, seen.ntens);
+  print("DSTRAN", seen.dstran, seen.ntens);
+  print("STATEV in", seen.statev, kStateCount);
+}
+
 [[noreturn]] void broken(const char* what, int call, const std::string& why) {
   std::fprintf(stderr, "UMAT contract broken at call %d: %s (%s)\n", call, what, why.c_str());
   print("PROPS", seen.props, seen.nprops);
@@ -146,6 +154,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                     withRotation ? drot : nullptr};
     const Outputs out{tStress.data(), tStatev.data(), tDdsdde.data(), &tSse, &tSpd, &tPnewdt};
     seen = {ntens, nprops, props.data(), stran.data(), dstran.data(), statev.data(), tStress.data(), tDdsdde.data(), tStatev.data()};
+    if (std::getenv("FUZZ_UMAT_VERBOSE")) broken_print(call);
     bool fatal = false;
     std::string why;
     try {

@@ -89,6 +89,7 @@ class ExplicitStepper final : public Stepper {
         {"scheme", toString(scene_.solver.explicitScheme.scheme)},
         {"shape_function", toString(scene_.solver.shapeFunction)},
         {"substepped_updates", solver_.substepped()},
+        {"mass_scaled_node_updates", solver_.massScaled()},
         {"snap_back_releases", solver_.snapBackReleases()},
         {"particle_updates_per_s",  // of this run's steps (after a restart: those since the checkpoint)
          r.wallTime > 0.0 ? static_cast<double>(r.particles) *

@@ -151,6 +151,9 @@ for d in "$out"/*/; do
   [[ -f $d/history.csv ]] || continue
   case "$r" in
     den-today-*) python3 scripts/validation/compare.py den "$d" data/experiments/nooru-mohamed-4b.txt --t0 0.0008 --delta top > "$d/compare.json" ;;
+    den-rig-coarse-paper-law)  # also against the upper frame's travel (a row of docs/validation.md); the gauges' last
+      python3 scripts/validation/compare.py den "$d" data/experiments/nooru-mohamed-4b.txt --t0 0.0008 --delta platen > "$d/compare-platen.json"
+      python3 scripts/validation/compare.py den "$d" data/experiments/nooru-mohamed-4b.txt --t0 0.0008 > "$d/compare.json" ;;
     den-*implicit*) python3 scripts/validation/compare.py den "$d" data/experiments/nooru-mohamed-4b.txt --t0 1 > "$d/compare.json" ;;
     den-*) python3 scripts/validation/compare.py den "$d" data/experiments/nooru-mohamed-4b.txt --t0 0.0008 > "$d/compare.json" ;;
     lpanel-*) python3 scripts/validation/compare.py lpanel "$d" data/experiments/winkler-lpanel-envelope.csv data/experiments/winkler-lpanel-series-a.csv > "$d/compare.json" ;;

@@ -31,6 +31,7 @@ void writeCheckpoint(const std::filesystem::path& path, const Solver& solver, co
   e.put(s.damping);
   e.put(static_cast<std::int64_t>(s.substepped));
   e.put(static_cast<std::int64_t>(s.released));
+  e.put(static_cast<std::int64_t>(s.massScaled));
   checkpoint::putConditions(e, s.reactions, s.conditionDisplacements);
   e.count(s.appliedLoads.size());
   e.array(s.appliedLoads);
@@ -74,6 +75,7 @@ RunBookkeeping readCheckpoint(const std::filesystem::path& path, Solver& solver,
   s.damping = d.get<double>();
   s.substepped = static_cast<long>(d.get<std::int64_t>());
   s.released = static_cast<long>(d.get<std::int64_t>());
+  s.massScaled = static_cast<long>(d.get<std::int64_t>());
   const std::size_t conditions = checkpoint::getConditions(d, s.reactions, s.conditionDisplacements);
   d.array(s.appliedLoads, d.count(2 * sizeof(double)));
   d.array(s.deferred, d.count(sizeof(std::uint32_t)));

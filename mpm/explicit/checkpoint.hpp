@@ -5,12 +5,12 @@
 // snapshot times, peak load). Written atomically and durably (checkpoint.bin.tmp, fsync, rename),
 // so a crash while writing leaves the previous checkpoint usable.
 //
-// Format (version 7; numbers in the machine's byte order, checked by a byte-order mark):
+// Format (version 8; numbers in the machine's byte order, checked by a byte-order mark):
 //   header, 32 bytes: "ECMMPMCK" | u32 version | u32 0x01020304 | u64 payload bytes |
 //                     u64 FNV-1a 64 of the payload
 //   payload: u64 scene file hash | i32 threads |
 //            step state: f64 time, dt | i64 step | f64 external work, dissipated, damping |
-//              i64 sub-stepped updates, snap-back releases | u64 conditions, each f64 reaction x y,
+//              i64 sub-stepped updates, snap-back releases, node updates with a raised mass | u64 conditions, each f64 reaction x y,
 //              prescribed displacement x y | u64 loads, each f64 applied force x y |
 //              u64 d, u32 deferred particles d (USL: the last step's deferred points, index order)
 //            platens: u64 q, each f64 displacement 3, force 3, velocity 3 (x, y, rotation) |
@@ -41,8 +41,8 @@
 namespace ecm::mpm {
 
 // 2: the USL deferred list; 3: the stop_when peak; 4: the second bands; 5: the scatter order;
-// 6: the crack paths; 7: the platens
-inline constexpr std::uint32_t kCheckpointVersion = 7;
+// 6: the crack paths; 7: the platens; 8: the node updates with a raised mass
+inline constexpr std::uint32_t kCheckpointVersion = 8;
 
 // What an explicit run carries besides the solver: the run loop's book and the time of the next
 // output row.

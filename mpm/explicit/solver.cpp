@@ -47,7 +47,7 @@ Energies Solver::energies() const {
 Solver::StepState Solver::stepState() const {
   const Clock& c0 = state_.clock;
   const RunTotals& t = state_.totals;
-  StepState s{c0.time, c0.dt, c0.step, t.externalWork, t.dissipated, t.damping, t.substepped, t.released,
+  StepState s{c0.time, c0.dt, c0.step, t.externalWork, t.dissipated, t.damping, t.substepped, t.released, t.massScaled,
               {}, {}, {}, fused_.deferred};
   std::sort(s.deferred.begin(), s.deferred.end());  // a set: the rebuild orders it by the particles' bins
   for (const auto& c : state_.conditions) {
@@ -67,7 +67,7 @@ void Solver::restoreStepState(const StepState& s) {
                                 std::to_string(s.appliedLoads.size()) + " loads, the scene " +
                                 std::to_string(conditions.size()) + " and " + std::to_string(loads.size()));
   state_.clock = {s.time, s.timeStep, s.step};
-  state_.totals = {s.externalWork, s.dissipated, s.damping, s.substepped, s.released};
+  state_.totals = {s.externalWork, s.dissipated, s.damping, s.substepped, s.released, s.massScaled};
   for (std::size_t i = 0; i < conditions.size(); ++i) {
     conditions[i].reaction = s.reactions[i];
     conditions[i].displacement = s.conditionDisplacements[i];

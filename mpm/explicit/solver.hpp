@@ -72,6 +72,7 @@ class Solver {
   Energies energies() const;
   double damage(std::size_t p) const;  // 0 intact .. 1 fully damaged
   long substepped() const { return state_.totals.substepped; }      // material updates that needed sub-stepping so far
+  long massScaled() const { return state_.totals.massScaled; }      // node updates with a raised mass so far
   long snapBackReleases() const { return state_.totals.released; }  // enriched updates that released a snap-back so far
   // Wall time spent in each phase of the steps so far (s; not kept by a checkpoint).
   double phaseSeconds(StepPhase p) const { return phaseSeconds_[static_cast<std::size_t>(p)]; }
@@ -93,7 +94,7 @@ class Solver {
     double time = 0.0, timeStep = 0.0;
     long step = 0;
     double externalWork = 0.0, dissipated = 0.0, damping = 0.0;
-    long substepped = 0, released = 0;
+    long substepped = 0, released = 0, massScaled = 0;
     std::vector<Vec2> reactions, conditionDisplacements;  // per condition
     std::vector<Vec2> appliedLoads;                       // per load
     std::vector<std::uint32_t> deferred;                  // USL: the last step's deferred points (fused_transfer.cpp)

@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace ecm::mpm {
@@ -31,7 +32,13 @@ StepSetup makeStepSetup(Scene scene, std::size_t particles, int threads, std::si
   s.halfWidth = Vec2::Constant(0.5 / scene.particlesPerCell);  // uGIMP half-size in cell units
   s.size = {scene.solver.effectiveSize, 0.0, g.cellSize[0], g.cellSize[1]};
   s.materials.reserve(scene.materials.size());
-  for (const auto& m : scene.materials) s.materials.emplace_back(m);
+  double lightest = INFINITY;
+  for (const auto& m : scene.materials) {
+    s.materials.emplace_back(m);
+    s.pWaveModulus.push_back(pWaveModulus(m.elastic));
+    lightest = std::min(lightest, m.density);
+  }
+  s.fullNodeMass = scene.materials.empty() ? 0.0 : lightest * g.cellSize[0] * g.cellSize[1] * scene.thickness;
   s.constrained.assign(static_cast<std::size_t>(g.nodeCount()), 0);
   for (const auto& c : scene.conditions) {
     const bool x = c.field || c.component[0].kind != Prescribed::Free, y = c.field || c.component[1].kind != Prescribed::Free;

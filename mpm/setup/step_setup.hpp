@@ -18,6 +18,8 @@ namespace ecm::mpm {
 struct StepSetup {
   Scene scene;
   std::vector<Material> materials;         // one per scene material, in its order
+  std::vector<double> pWaveModulus;        // MPa, per material: M = a_11 of its elastic stiffness
+  double fullNodeMass = 0.0;               // t: rho h_x h_y t of the lightest material, a node's mass inside a body
   Vec2 invCell = Vec2::Ones();             // 1/mm
   Vec2 halfWidth = Vec2::Zero();           // uGIMP half-size of a particle's domain, in cells
   EffectiveSize size;                      // the effective size H of every point (docs/model.md)
@@ -32,6 +34,7 @@ struct RunTotals {
   double damping = 0.0;       // removed by local and viscous damping
   long substepped = 0;        // material updates that needed sub-stepping
   long released = 0;          // enriched updates that released a snap-back
+  long massScaled = 0;        // explicit: node updates whose mass was raised to keep them stable (grid_update.cpp)
 };
 
 // Energies (N mm = mJ). Kinetic and strain are of the present state; the others accumulate.

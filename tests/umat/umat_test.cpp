@@ -212,6 +212,11 @@ TEST(Umat, BadPropsStopTheAnalysisWithTheReason) {
   props[kSnapBack] = 2.0;
   EXPECT_EXIT(Caller(3, 3, props).call(std::vector<double>(6, 0.0)), ::testing::ExitedWithCode(2), "PROPS\\(9\\)");
   EXPECT_EXIT(Caller(2, 2, concreteProps(10.0)).call(std::vector<double>(4, 0.0)), ::testing::ExitedWithCode(2), "NSHR");
+  // A denormal E: the strain at onset f_t' / E is infinite (found by fuzz/fuzz_umat.cpp: the update
+  // crawled through its sub-steps).
+  props = concreteProps(10.0);
+  props[kYoungsModulus] = 4.9e-324;
+  EXPECT_EXIT(Caller(3, 3, props).call(std::vector<double>(6, 0.0)), ::testing::ExitedWithCode(2), "strain at onset");
 }
 
 TEST(Umat, WhatAFiniteElementCodeCouldPassWrongIsRefusedByName) {
