@@ -129,7 +129,8 @@ for r in "${runs[@]}"; do
   [[ $s == variant ]] && s=$(variant "$r")
   echo "== $r ($s)" >&2
   start=$SECONDS
-  if [[ -f $out/$r/checkpoint.bin ]]; then  # stopped before (Ctrl-C, a signal, --max-steps): resumed
+  if [[ -f $out/$r/checkpoint.bin ]] && grep -q '"status": *"stopped"' "$out/$r/summary.json" 2>/dev/null; then
+    # stopped before (Ctrl-C, a signal, --max-steps): resumed; a failed run starts afresh
     echo "$r: resuming from $out/$r/checkpoint.bin" >&2
     "$bin" "$s" --restart "$out/$r" --threads "$threads" --no-vtu -q
   else
