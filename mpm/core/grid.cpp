@@ -17,7 +17,6 @@ void GridFields::resize(int n) {
   momentum.assign(s, Vec2::Zero());
   force.assign(s, Vec2::Zero());
   externalForce.assign(s, Vec2::Zero());
-  stiffness.assign(s, 0.0);
   velocity.assign(s, Vec2::Zero());
   velocityChange.assign(s, Vec2::Zero());
 }

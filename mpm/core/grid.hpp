@@ -33,9 +33,6 @@ struct GridFields {
   std::vector<Vec2> momentum;         // t mm/s
   std::vector<Vec2> force;            // N, internal
   std::vector<Vec2> externalForce;    // N, loads and gravity
-  // N/mm: sum_p V_p M_p |grad N_np|^2, the node's own stiffness (M the P-wave modulus); with the
-  // forces. The explicit step keeps sqrt(k/m) dt below 2 with it (docs/model.md, "Nodes with little mass").
-  std::vector<double> stiffness;
   std::vector<Vec2> velocity;         // mm/s
   std::vector<Vec2> velocityChange;   // mm/s
 

@@ -130,7 +130,7 @@ ChunkOutcome gatherStressScatter(const TransferSetup& t, const GridFields& grid,
       expandStencil<F>(p.stencilAt[i], invCell, halfWidth, s);
       const SharedMassVolume mv = shared ? shared[p.material[i]] : SharedMassVolume{p.mass[i], p.volume[i]};
       detail::scatterParticle<F, true, true>(s, nx, mv.mass, p.velocity[i], mv.volume, sig[k], gravity, withGravity,
-                                             out.modulus[p.material[i]], out);
+                                             out);
     }
   }
   measured = span.rows(nx);
@@ -198,7 +198,7 @@ void scatterState(const StepSetup& setup, long step, Particles& particles, GridF
   for (const std::uint32_t i : fused.deferred) isDeferred[i] = 1;
   detail::zeroScatterFields(threads, grid, true, true);
   const TransferSetup tr = setupOf(setup, order);
-  const ScatterTarget target = detail::targetOf(grid, setup.pWaveModulus);
+  const ScatterTarget target = detail::targetOf(grid);
   std::vector<std::vector<std::uint32_t>> far(static_cast<std::size_t>(threads));
   std::vector<std::size_t> bad(static_cast<std::size_t>(threads), kNoParticle);
   order.far.clear();
@@ -223,7 +223,7 @@ bool gatherStressScatter(const StepSetup& setup, const Clock& clock, GridFields&
   planScatter(order, scene.grid.nodesY());  // from where the stencils started in the last step
   detail::zeroScatterFields(threads, grid, true, true);
   const TransferSetup tr = setupOf(setup, order);
-  const ScatterTarget target = detail::targetOf(grid, setup.pWaveModulus);
+  const ScatterTarget target = detail::targetOf(grid);
   fused.deferredPerThread.resize(parts);
   fused.farPerThread.resize(parts);
   for (auto& d : fused.deferredPerThread) d.clear();
@@ -273,7 +273,7 @@ bool gatherStressScatter(const StepSetup& setup, const Clock& clock, GridFields&
 void scatterDeferred(const StepSetup& setup, Particles& particles, GridFields& grid, const ScatterOrder& order,
                      const FusedPass& fused) {
   const TransferSetup tr = setupOf(setup, order);
-  const ScatterTarget target = detail::targetOf(grid, setup.pWaveModulus);
+  const ScatterTarget target = detail::targetOf(grid);
   withShapeFunction(setup.scene.solver.shapeFunction, [&]<ShapeFunction F>() {
     forEachChunkByColour(
         order, setup.threads,

@@ -72,13 +72,13 @@ void applyVelocityConditions(const StepSetup& setup, const Clock& clock, GridFie
 
 // A node that a particle has only just reached (a free surface moving into empty cells) carries a
 // sliver of a node's mass but, with linear shape functions, the full gradient: its own frequency
-// sqrt(k / m) outruns the step and the particle's stress and the node's velocity ring up within a
-// few hundred steps. Where a node's mass is below kLeastShare of a full node's (rho h_x h_y t, the
-// lightest material) and dt^2 k / m > 1 (k: GridFields::stiffness), its acceleration takes
-// kLeastShare of a full node's mass (docs/model.md, "Nodes with little mass"). Measured at CFL
-// 0.6: a rising block held with 0.15 and blew up with 0.1, the fine L-panel ran with 0.1.
-// Corner, edge and inner nodes of a body hold 0.25, 0.5 and 1 of a full node's mass: none is
-// touched (tests/mpm/mass_scaling_test.cpp), and runs without such nodes are bitwise unchanged.
+// outruns the step and the particle's stress and the node's velocity ring up within a few steps.
+// A node whose mass is below kLeastShare of a full node's (rho h_x h_y t, the lightest material)
+// takes kLeastShare of a full node's mass for its acceleration (docs/model.md, "Nodes with little
+// mass"). Measured at CFL 0.6: a rising block held with 0.15 and blew up with 0.1, the fine
+// L-panel ran with 0.1. Corner, edge and inner nodes of a body hold 0.25, 0.5 and 1 of a full
+// node's mass: none is touched (tests/mpm/mass_scaling_test.cpp), and runs without such nodes
+// are bitwise unchanged.
 constexpr double kLeastShare = 0.2;
 
 }  // namespace
@@ -95,7 +95,7 @@ void updateGrid(const StepSetup& setup, const Clock& clock, GridFields& grid, st
   // are mass-weighted means of particle velocities (bounded whatever a node's mass), and uGIMP's
   // and the B-splines' weights and gradients fade together at the edge of their support.
   const bool exposed = scene.solver.shapeFunction == ShapeFunction::Linear && scene.solver.explicitScheme.scheme == UpdateScheme::USL;
-  const double least = exposed ? kLeastShare * setup.fullNodeMass : 0.0, dtSquared = dt * dt;
+  const double least = exposed ? kLeastShare * setup.fullNodeMass : 0.0;
   const Eigen::Vector3d sums = orderedSum(setup.threads, nodes, Eigen::Vector3d(Eigen::Vector3d::Zero()), [&](long node) -> Eigen::Vector3d {
     const auto n = static_cast<std::size_t>(node);
     const double m = grid.mass[n];
@@ -105,7 +105,7 @@ void updateGrid(const StepSetup& setup, const Clock& clock, GridFields& grid, st
       return Eigen::Vector3d::Zero();
     }
     const double invMass = 1.0 / m;  // one division per node, not three: the loop's cost
-    const bool scaled = m < least && dtSquared * grid.stiffness[n] > m;
+    const bool scaled = m < least;
     const double accelerationInvMass = scaled ? 1.0 / least : invMass;
     const Vec2 v = grid.momentum[n] * invMass;
     const Vec2 f = grid.force[n] + grid.externalForce[n];

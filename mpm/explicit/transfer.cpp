@@ -176,7 +176,6 @@ void zeroScatterFields(int threads, GridFields& grid, bool massMomentum, bool fo
     if (forces) {
       grid.force[k].setZero();
       grid.externalForce[k].setZero();
-      grid.stiffness[k] = 0.0;
     }
   }
 }
@@ -220,7 +219,7 @@ void particleToGrid(const StepSetup& setup, long step, Particles& particles, Gri
   detail::zeroScatterFields(threads, grid, what & kMassMomentum, what & kForces);
   const ScatterFns fn = scatterFor(scene.solver.shapeFunction, what);
   const ScatterSetup t{g, setup.invCell, setup.halfWidth, scene.solver.gravity, order};
-  const ScatterTarget target = detail::targetOf(grid, setup.pWaveModulus);
+  const ScatterTarget target = detail::targetOf(grid);
   std::vector<std::vector<std::uint32_t>> far(static_cast<std::size_t>(threads));
   std::vector<std::size_t> bad(static_cast<std::size_t>(threads), kNoParticle);
   std::vector<RowSpan>& measured = order.measured;
@@ -279,7 +278,7 @@ void gridToParticleAndRemap(const StepSetup& setup, const Clock& clock, GridFiel
   const int threads = setup.threads;
   detail::zeroScatterFields(threads, grid, true, false, /*keepMass=*/true);
   const ScatterSetup t{scene.grid, setup.invCell, setup.halfWidth, scene.solver.gravity, order};
-  const ScatterTarget target = detail::targetOf(grid, setup.pWaveModulus);
+  const ScatterTarget target = detail::targetOf(grid);
   std::vector<std::size_t> bad(static_cast<std::size_t>(threads), kNoParticle);
   withShapeFunction(scene.solver.shapeFunction, [&]<ShapeFunction F>() {
     forEachChunkByColour(order, threads, [&](std::size_t c, int th) {

@@ -20,12 +20,10 @@ struct ScatterTarget {
   Vec2* momentum;
   Vec2* force;
   Vec2* externalForce;
-  double* stiffness;
-  const double* modulus;  // per material: its P-wave modulus M (MPa), for the stiffness
 };
 
-inline ScatterTarget targetOf(GridFields& g, const std::vector<double>& modulus) {
-  return {g.mass.data(), g.momentum.data(), g.force.data(), g.externalForce.data(), g.stiffness.data(), modulus.data()};
+inline ScatterTarget targetOf(GridFields& g) {
+  return {g.mass.data(), g.momentum.data(), g.force.data(), g.externalForce.data()};
 }
 
 // Zeroes what a scatter accumulates (mass and momentum, forces) at every node; keepMass: not the mass.
@@ -52,18 +50,17 @@ inline std::pair<std::size_t, std::size_t> partRange(std::size_t count, int t, i
           count * static_cast<std::size_t>(t + 1) / static_cast<std::size_t>(n)};
 }
 
-// A particle's mass m, momentum m v, internal force (-V sigma . grad N), its share of the nodes'
-// stiffness (V M |grad N|^2, M the P-wave modulus) and gravity at the nodes of its stencil s (nx:
-// nodes per grid row). The fields come as values: the fused pass
+// A particle's mass m, momentum m v, internal force (-V sigma . grad N) and gravity at the
+// nodes of its stencil s (nx: nodes per grid row). The fields come as values: the fused pass
 // hands over the stress it has just computed (reloading it from memory straight after the
 // store stalls on store forwarding).
 // Mass = false (with MassMomentum): the momentum alone, for MUSL's remap (its mass is the P2G's).
 template <ShapeFunction F, bool MassMomentum, bool Forces, bool Mass = MassMomentum>
 inline void scatterParticle(const Stencil& s, int nx, double m, const Vec2& velocity, double volume, const Voigt& sig,
-                            const Vec2& gravity, bool withGravity, double modulus, ScatterTarget out) {
+                            const Vec2& gravity, bool withGravity, ScatterTarget out) {
   constexpr int S = supportSize(F);
   const Vec2 mv = m * velocity;
-  const double sxx = volume * sig[0], syy = volume * sig[1], sxy = volume * sig[2], vm = volume * modulus;
+  const double sxx = volume * sig[0], syy = volume * sig[1], sxy = volume * sig[2];
   const Vec2 mg = m * gravity;
   for (int j = 0; j < S; ++j) {
     const int row = s.base + j * nx;
@@ -77,7 +74,6 @@ inline void scatterParticle(const Stencil& s, int nx, double m, const Vec2& velo
       if constexpr (Forces) {
         const double gx = s.gx[k] * s.wy[j], gy = s.wx[k] * s.gy[j];
         out.force[n] -= Vec2(sxx * gx + sxy * gy, sxy * gx + syy * gy);
-        out.stiffness[n] += vm * (gx * gx + gy * gy);
         if (withGravity) out.externalForce[n] += w * mg;
       }
     }
@@ -89,7 +85,7 @@ template <ShapeFunction F, bool MassMomentum, bool Forces, bool Mass = MassMomen
 inline void scatterParticle(const Stencil& s, int nx, const Particles& p, std::size_t i, const Vec2& gravity,
                             bool withGravity, ScatterTarget out) {
   scatterParticle<F, MassMomentum, Forces, Mass>(s, nx, p.mass[i], p.velocity[i], p.volume[i], p.stress[i], gravity,
-                                           withGravity, out.modulus[p.material[i]], out);
+                                           withGravity, out);
 }
 
 // What a particle reads from the updated grid: the velocity v^{n+1} and its change at the

@@ -35,7 +35,6 @@ StepSetup makeStepSetup(Scene scene, std::size_t particles, int threads, std::si
   double lightest = INFINITY;
   for (const auto& m : scene.materials) {
     s.materials.emplace_back(m);
-    s.pWaveModulus.push_back(pWaveModulus(m.elastic));
     lightest = std::min(lightest, m.density);
   }
   s.fullNodeMass = scene.materials.empty() ? 0.0 : lightest * g.cellSize[0] * g.cellSize[1] * scene.thickness;

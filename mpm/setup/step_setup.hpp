@@ -18,7 +18,6 @@ namespace ecm::mpm {
 struct StepSetup {
   Scene scene;
   std::vector<Material> materials;         // one per scene material, in its order
-  std::vector<double> pWaveModulus;        // MPa, per material: M = a_11 of its elastic stiffness
   double fullNodeMass = 0.0;               // t: rho h_x h_y t of the lightest material, a node's mass inside a body
   Vec2 invCell = Vec2::Ones();             // 1/mm
   Vec2 halfWidth = Vec2::Zero();           // uGIMP half-size of a particle's domain, in cells

@@ -1,9 +1,9 @@
 // Nodes with little mass (docs/model.md, "Nodes with little mass"): a node that a particle has
 // only just reached carries a sliver of its mass but the full gradient of its linear shape
 // function, so its own frequency sqrt(k / m) outruns the explicit step. The grid update gives such
-// a node (below 0.2 of a full node's mass, dt^2 k / m > 1) 0.2 of a full node's mass for its
-// acceleration; no inner, edge or corner node of a body is touched, so runs without such nodes
-// are bitwise unchanged.
+// a node (below 0.2 of a full node's mass; USL, linear shape functions) 0.2 of a full node's mass
+// for its acceleration; no inner, edge or corner node of a body is touched, so runs without such
+// nodes are bitwise unchanged.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -49,8 +49,7 @@ double kineticEnergy(const Solver& s) {
 
 // A body at rest in its grid, inner, edge and corner nodes only: no node is scaled, for 1 to 4
 // particles per cell, at CFL 0.6 and 0.9 (linear shape functions; uGIMP and B-splines never scale:
-// their weights and gradients fade together, and a body at rest had uGIMP outer nodes past the
-// criterion at 3 and 4 particles per cell).
+// their weights and gradients fade together at the edge of their support).
 TEST(MassScaling, NoFullOrSurfaceNodeIsEverScaled) {
   for (const double cfl : {0.6, 0.9})
   for (const ShapeFunction shape : {ShapeFunction::Linear, ShapeFunction::UGimp, ShapeFunction::BSpline2})
