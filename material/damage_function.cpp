@@ -18,9 +18,10 @@ void DamageLawParams::validate() const {
   requireInRange("tensile_strength ft (MPa)", tensileStrength, 0.0, 1e300);
   requireInRange("softening_modulus Ep (MPa)", softeningModulus, 0.0, 1e300);
   requireInRange("softening_exponent n", softeningExponent, 0.0, 0.5);
-  // The strain at onset, f_t' / E, of a small-strain model (a denormal E made it infinite and the
-  // update crawl through its sub-steps: found by fuzz/fuzz_umat.cpp).
-  requireInRange("the strain at onset ft / E", tensileStrength / youngsModulus, 0.0, 1.0, false, true);
+  // The strain at onset, f_t' / E, a number (a denormal E made it infinite and the update crawl
+  // through its sub-steps: found by fuzz/fuzz_umat.cpp). Onset strains far above 1 stay allowed:
+  // the extremes tests hold the update finite there.
+  requireInRange("the strain at onset ft / E", tensileStrength / youngsModulus, 0.0, 1e300);
 }
 
 namespace {
