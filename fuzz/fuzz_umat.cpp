@@ -56,7 +56,8 @@ void print(const char* name, const double* v, int n) {
   std::fprintf(stderr, "\n");
 }
 
-void broken_print(int call) {
+// The inputs of call `call` (FUZZ_UMAT_VERBOSE: of every call).
+void printInputs(int call) {
   std::fprintf(stderr, "call %d\n", call);
   print("PROPS", seen.props, seen.nprops);
   print("STRAN", seen.stran, seen.ntens);
@@ -65,11 +66,8 @@ void broken_print(int call) {
 }
 
 [[noreturn]] void broken(const char* what, int call, const std::string& why) {
-  std::fprintf(stderr, "UMAT contract broken at call %d: %s (%s)\n", call, what, why.c_str());
-  print("PROPS", seen.props, seen.nprops);
-  print("STRAN", seen.stran, seen.ntens);
-  print("DSTRAN", seen.dstran, seen.ntens);
-  print("STATEV in", seen.statev, kStateCount);
+  std::fprintf(stderr, "UMAT contract broken: %s (%s)\n", what, why.c_str());
+  printInputs(call);
   print("STATEV out", seen.statevOut, kStateCount);
   print("STRESS out", seen.stress, seen.ntens);
   print("DDSDDE out", seen.ddsdde, seen.ntens * seen.ntens);
@@ -156,7 +154,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                     withRotation ? drot : nullptr};
     const Outputs out{tStress.data(), tStatev.data(), tDdsdde.data(), &tSse, &tSpd, &tPnewdt};
     seen = {ntens, nprops, props.data(), stran.data(), dstran.data(), statev.data(), tStress.data(), tDdsdde.data(), tStatev.data()};
-    if (std::getenv("FUZZ_UMAT_VERBOSE")) broken_print(call);
+    if (std::getenv("FUZZ_UMAT_VERBOSE")) printInputs(call);
     bool fatal = false;
     std::string why;
     try {
