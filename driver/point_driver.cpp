@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
 #include <vector>
 
 #include "driver/golden_maximum.hpp"
@@ -31,11 +32,16 @@ class Runner {
   }
 
   PointRun run() {
-    record(0, 0, StepOutcome{}, false, false);
-    for (int k = 0; k < static_cast<int>(scene_.path.size()); ++k) {
-      const Segment& seg = scene_.path[k];
-      const bool ok = seg.openingControl ? openingSegment(k, seg) : strainSegment(k, seg);
-      if (!ok) return std::move(run_);
+    try {
+      record(0, 0, StepOutcome{}, false, false);
+      for (int k = 0; k < static_cast<int>(scene_.path.size()); ++k) {
+        const Segment& seg = scene_.path[k];
+        const bool ok = seg.openingControl ? openingSegment(k, seg) : strainSegment(k, seg);
+        if (!ok) return std::move(run_);
+      }
+    } catch (const NonFiniteRow& e) {
+      run_.failure = e.what;
+      return std::move(run_);
     }
     run_.completed = true;
     return std::move(run_);
@@ -477,6 +483,11 @@ class Runner {
     stress_ = out.result.stress;
   }
 
+  // Thrown by record for a row that is not all numbers; run() ends there (the rows before it stay).
+  struct NonFiniteRow {
+    std::string what;
+  };
+
   void record(int k, int inc, const StepOutcome& out, bool opening, bool jump, bool accumulateStep = true,
               unsigned event = 0) {
     if (accumulateStep && inc > 0) accumulate(out);
@@ -516,6 +527,9 @@ class Runner {
       r.crackNormal = n;
       r.opening = scene_.effectiveSize * normalComponent(point_.strain - c * stress_, n);
     }
+    if (!r.strain.allFinite() || !r.stress.allFinite() || !std::isfinite(r.work) || !std::isfinite(r.dissipation))
+      throw NonFiniteRow{"increment " + std::to_string(inc) + " (segment " + std::to_string(k + 1) +
+                         "): the material update gave a stress or an energy that is not a number"};
     run_.history.push_back(r);
     highest_ = std::max(highest_, principalStresses(stress_).first);
     if (observe_) observe_(r, inc, total_);

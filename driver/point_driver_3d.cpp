@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <sstream>
+#include <string>
 #include <vector>
 
 #include "driver/golden_maximum.hpp"
@@ -139,11 +140,18 @@ PointRun3 runPoint3D(const PointScene3& scene, const RowObserver3& observe) {
   int increment = 0;
   const int total = totalIncrements(scene);
   run.history.push_back(rowOf(m, p, stress, 0, 0));
+  // A row that is not all numbers ends the run with its increment named (the rows before it stay).
   const auto record = [&](HistoryRow3 row) {
     row.work = work;
     row.dissipation = dissipation;
+    if (!row.strain.allFinite() || !row.stress.allFinite() || !std::isfinite(row.work) || !std::isfinite(row.dissipation)) {
+      run.failure = "increment " + std::to_string(increment) + " (segment " + std::to_string(row.segment) +
+                    "): the material update gave a stress or an energy that is not a number";
+      return false;
+    }
     run.history.push_back(row);
     if (observe) observe(row, increment, total);
+    return true;
   };
   for (std::size_t seg = 0; seg < scene.path.size(); ++seg) {
     const Segment3& s = scene.path[seg];
@@ -236,7 +244,7 @@ PointRun3 runPoint3D(const PointScene3& scene, const RowObserver3& observe) {
         row.iterations = iterations;
         row.substeps = pieces;
         row.snapBackRelease = released;
-        record(row);
+        if (!record(row)) return run;
         done = true;
       }
       if (!done) {

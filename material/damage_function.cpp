@@ -65,6 +65,14 @@ PoweredIntegrity solveIntegrity(const DamageLawParams& p, double y, const Powere
   const double r = std::sqrt(2.0 * e * y) / p.tensileStrength;  // r >= g(x0) >= 1
   // phi(s) = E - r E s^(1/n) - (r - 1) E_p s, concave and decreasing in s = x^n.
   double s = start.xn, xs = start.x;
+  // Each term alone bounds the root from above, s* <= sUpper <= 2 s* (at the root the larger term
+  // is at least E/2). From a start far above, the Newton step lands on s* as s - (s - s*), which
+  // loses s* to round-off once s* < 1e-16 s (a huge increment at D near 1): start from sUpper.
+  const double sUpper = std::min(r > 1.0 ? e / ((r - 1.0) * ep) : 1.0, std::pow(r, -n));
+  if (s > 1e3 * sUpper) {
+    s = sUpper;
+    xs = std::pow(s, 1.0 / n);
+  }
   for (int it = 0; it < 200; ++it) {
     const double phi = e - r * e * xs - (r - 1.0) * ep * s;
     const double dphi = -r * e * xs / (n * s) - (r - 1.0) * ep;

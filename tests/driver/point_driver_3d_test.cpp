@@ -28,6 +28,20 @@ hypothesis: three_dimensional
 effective_size: 10
 )";
 
+TEST(PointDriver3D, ARowThatIsNotANumberEndsTheRunAndNamesItsIncrement) {
+  // An elastic point strained to 1e305 in one increment: E eps overflows a double, the stress is
+  // infinite and the work NaN. The run stops at increment 1, says why, and keeps row 0.
+  const PointScene3 s = readPointScene3(io::parseYaml(
+      "material: {name: glass, model: linear_elastic, hypothesis: plane_stress, youngs_modulus: 32000, poisson_ratio: 0.2}\n"
+      "hypothesis: three_dimensional\neffective_size: 10\n"
+      "path:\n  segments:\n    - {eps_xx: 1.0e305, eps_yy: 0, eps_zz: 0, gamma_yz: 0, gamma_xz: 0, gamma_xy: 0, increments: 1}\n", "s.yaml"));
+  const PointRun3 run = runPoint3D(s);
+  EXPECT_FALSE(run.completed);
+  EXPECT_NE(run.failure.find("increment 1 (segment 1)"), std::string::npos) << run.failure;
+  EXPECT_NE(run.failure.find("not a number"), std::string::npos) << run.failure;
+  EXPECT_EQ(run.history.size(), 1u);
+}
+
 TEST(PointDriver3D, UniaxialTensionFollowsTheFrozenLateralBandClosedForm) {
   // sigma_xx at the band's integrity x: x ((lambda + 2 mu) e + 2 lambda eps0) with e from
   // (lambda + 2 mu) e^2 + 4 lambda eps0 e + 4 (lambda + mu) eps0^2 = 2 F(x), eps0 = -nu f_t'/E

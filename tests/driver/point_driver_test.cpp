@@ -5,6 +5,7 @@
 #include "driver/mixed_control.hpp"
 #include "driver/point_driver.hpp"
 #include "driver/point_output.hpp"
+#include "driver/point_scene_yaml.hpp"
 #include "io/csv_reader.hpp"
 #include "io/temp_dir.hpp"
 
@@ -46,6 +47,45 @@ PointScene scene(ModelKind kind, double bigH, const PresetPath& preset, double n
 }
 
 const DamageLawParams kLaw{test::kE, test::kFt, test::kEp, test::kN};
+
+TEST(PointDriver, ARowThatIsNotANumberEndsTheRunAndNamesItsIncrement) {
+  // E eps overflows a double (32000 x 1e305): the first increment's stress is infinite and its
+  // work NaN. The run stops there, names the increment, and keeps the rows before it.
+  PointRun run = runPoint(scene(ModelKind::LinearElastic, 10.0, preset("uniaxial_strain", 1e305, 4)));
+  EXPECT_FALSE(run.completed);
+  EXPECT_NE(run.failure.find("increment 1 (segment 1)"), std::string::npos) << run.failure;
+  EXPECT_NE(run.failure.find("not a number"), std::string::npos) << run.failure;
+  ASSERT_EQ(run.history.size(), 1u);
+  EXPECT_EQ(run.history[0].increment, 0);
+}
+
+TEST(PointDriver, AHugeIncrementAtDamageNearOneStaysANumber) {
+  // Found by fuzz/fuzz_point_scene.cpp: after a tension path to D = 0.993, increments of strain
+  // 4e22 gave an integrity of -4e-121 (the stress changed sign) and a NaN dissipation, and the run
+  // said it had completed. Now each band fails completely (integrity in [0, 1e-100]) and the
+  // dissipation stays a number, at most the two bands' whole energy: H x (dissipation per volume)
+  // <= 2 h g_f, g_f the band law's energy per band volume to failure (docs/model.md, identities).
+  const PointScene s = readPointScene(io::parseYaml(R"(
+name: huge-increment
+material: {model: enriched, hypothesis: plane_stress, youngs_modulus: 41246, poisson_ratio: 0.15, tensile_strength: 2.5,
+           softening_modulus: 12, softening_exponent: 0.2, band_width: 0.1, second_band: orthogonal}
+effective_size: 20
+path:
+  segments:
+    - {eps_xx: 1.0131e-4, sig_yy: 0.0, sig_xy: 0.0, increments: 200}
+    - {eps_xx: 4.0381e24, eps_yy: 8.7378e-5, gamma_xy: 2.05e-4, increments: 100}
+)", "huge.yaml"));
+  const PointRun run = runPoint(s);
+  ASSERT_TRUE(run.completed) << run.failure;
+  const DamageLawParams law{41246, 2.5, 12, 0.2};
+  const double limit = 2.0 * 0.1 * dissipationToFailure(law);
+  for (const HistoryRow& r : run.history) {
+    ASSERT_TRUE(std::isfinite(r.dissipation)) << "increment " << r.increment;
+    EXPECT_GE(r.integrity, 0.0) << "increment " << r.increment;
+    EXPECT_LE(20.0 * r.dissipation, (1.0 + 1e-9) * limit) << "increment " << r.increment;
+  }
+  EXPECT_LT(run.history.back().integrity, 1e-100);
+}
 
 TEST(PointDriver, ElasticPathsFollowHookesLaw) {
   // Closed forms of plane-stress Hooke's law: uniaxial stress, uniaxial strain, pure shear.

@@ -54,6 +54,26 @@ TEST(DamageFunction, IntegritySolveIsIrreversibleAndBounded) {
   }
 }
 
+TEST(DamageFunction, HugeDrivingForcesGiveTheSameIntegrityFromEveryStart) {
+  // A huge increment at D near 1 (found by fuzz/fuzz_point_scene.cpp: a strain of 4e22 in one
+  // increment gave an integrity of -4e-121 and a NaN dissipation). Eq. (13) at the root, with
+  // r = sqrt(2 E Y) / f_t' and s = x^n: E = r E x + (r - 1) E_p s. Once E x << E_p s there the
+  // root is s = E / ((r - 1) E_p) to round-off, whatever the integrity the solve starts from.
+  for (double strain : {1e10, 1e20, 1e22, 4e22, 1e24}) {
+    const double sigma = kLaw.youngsModulus * strain;
+    const double y = sigma * sigma / (2.0 * kLaw.youngsModulus);
+    const double r = strain * kLaw.youngsModulus / kLaw.tensileStrength;
+    const double s = kLaw.youngsModulus / ((r - 1.0) * kLaw.softeningModulus);
+    for (double x0 : {1.0, 0.0072, 1e-30}) {
+      const PoweredIntegrity x = solveIntegrity(kLaw, y, PoweredIntegrity{x0, std::pow(x0, kLaw.softeningExponent)});
+      EXPECT_NEAR(x.xn, s, 1e-12 * s) << "strain " << strain << ", start " << x0;
+      EXPECT_NEAR(x.x, std::pow(s, 1.0 / kLaw.softeningExponent), 1e-11 * x.x) << "strain " << strain << ", start " << x0;
+      EXPECT_GT(x.x, 0.0);
+      EXPECT_TRUE(std::isfinite(dissipationBetween(kLaw, x0, x.x)));
+    }
+  }
+}
+
 TEST(DamageFunction, PaperConcreteDissipatesTheFractureEnergy) {
   // The paper's verified erratum, G_F = 0.11 N/mm (docs/model.md): h int_0^1 F dD = 0.1100 N/mm
   // for the paper's concrete.
