@@ -5,7 +5,7 @@
 namespace ecm::io {
 
 void writeJsonSummary(const nlohmann::json& summary, const std::filesystem::path& path, int indent) {
-  writeFileAtomically(path, summary.dump(indent) + "\n");
+  writeFileAtomically(path, summary.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
 }
 
 }  // namespace ecm::io

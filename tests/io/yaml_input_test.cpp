@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "io/utf8.hpp"
 #include "temp_dir.hpp"
 
 namespace ecm::io {
@@ -83,6 +84,24 @@ TEST(YamlInput, StringWhereANumberIsExpected) {
   expectContains(e.what(), "expected a number");
   // A quoted number is a string in YAML.
   expectAt(inputError([&] { m.get<double>("c"); }), "t.yaml", 3, "expected a number, got the string '3.0'");
+}
+
+TEST(YamlInput, AStringThatIsNotUtf8TextIsRefusedWithItsLine) {
+  // Found by fuzz/fuzz_point_scene.cpp: a scene name with stray bytes (0x9C) ran, and then
+  // summary.json could not be written. UTF-8 text (here e-acute and a CJK character) is read.
+  const YamlMap m = parseYaml("a: caf\xc3\xa9 \xe6\xb0\xb4\nb: band\x9c\x9cname\n", "t.yaml");
+  EXPECT_EQ(m.get<std::string>("a"), "caf\xc3\xa9 \xe6\xb0\xb4");
+  const InputError e = inputError([&] { m.get<std::string>("b"); });
+  expectAt(e, "t.yaml", 2, "key 'b': is not valid UTF-8 text (a stray byte at character 5)");
+}
+
+TEST(YamlInput, Utf8CheckFollowsRfc3629) {
+  EXPECT_EQ(firstInvalidUtf8("plain ascii"), std::nullopt);
+  EXPECT_EQ(firstInvalidUtf8("\xf0\x9f\x98\x80"), std::nullopt);      // U+1F600
+  EXPECT_EQ(firstInvalidUtf8("ab\xc0\xaf"), 2u);                     // an overlong '/'
+  EXPECT_EQ(firstInvalidUtf8("\xed\xa0\x80"), 0u);                   // a surrogate, U+D800
+  EXPECT_EQ(firstInvalidUtf8("\xf4\x90\x80\x80"), 0u);               // above U+10FFFF
+  EXPECT_EQ(firstInvalidUtf8("x\xe6\xb0"), 1u);                      // cut short
 }
 
 TEST(YamlInput, MapOrSequenceWhereAScalarIsExpected) {

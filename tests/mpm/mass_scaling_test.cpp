@@ -36,7 +36,9 @@ void prestress(Solver& solver) {
   Particles& p = solver.editParticles();
   for (std::size_t i = 0; i < p.size(); ++i) {
     p.strain[i] = Voigt(0.0, 1e-4, 0.0);
-    p.stress[i] = solver.materials()[0].stress(MaterialPoint{p.strain[i]});
+    MaterialPoint point;
+    point.strain = p.strain[i];
+    p.stress[i] = solver.materials()[0].stress(point);
   }
 }
 
@@ -74,7 +76,9 @@ TEST(MassScaling, ParticlesEnteringEmptyCellsDoNotShakeTheirNodesApart) {
   double top = 0.0;
   for (int k = 0; k < 6000; ++k) {
     solver.advance();
-    if (k % 500 == 0) EXPECT_NEAR(kineticEnergy(solver), own, 1e-4 * own) << "step " << k;
+    if (k % 500 == 0) {
+      EXPECT_NEAR(kineticEnergy(solver), own, 1e-4 * own) << "step " << k;
+    }
   }
   const Particles& p = solver.particles();
   for (std::size_t i = 0; i < p.size(); ++i) top = std::max(top, p.position[i][1]);
