@@ -25,7 +25,7 @@ void BM_Enriched3DIntact(benchmark::State& st) {
   std::optional<BandState3> onset;
   for (auto _ : st) {
     for (auto& e : strains) {
-      const UpdateResult3 r = model.updateIntact(e, kStep3, size, onset);
+      const UpdateResult3 r = model.updateIntact(e, kStep3, size, onset, SnapBackPolicy::Stop);
       benchmark::DoNotOptimize(r.stress);
       e -= kStep3;
     }
@@ -43,8 +43,8 @@ void BM_Enriched3DCrackedSoftening(benchmark::State& st) {
   std::optional<BandState3> band;
   for (int i = 0; i < 40; ++i) {
     const Voigt6 d = embed(5e-6, -1e-6, -1e-6, 1e-6);
-    if (band) model.updateCracked(*band, strain, d);
-    else model.updateIntact(strain, d, size, band);
+    if (band) model.updateCracked(*band, strain, d, SnapBackPolicy::Stop);
+    else model.updateIntact(strain, d, size, band, SnapBackPolicy::Stop);
   }
   if (!band) return st.SkipWithError("point did not crack");
   const UpdateOptions options{SnapBackPolicy::Stop, st.range(0) != 0};

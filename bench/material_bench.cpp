@@ -45,7 +45,7 @@ void BM_EnrichedIntact(benchmark::State& st) {
   std::optional<BandState> onset;
   for (auto _ : st) {
     for (auto& e : strains) {
-      const UpdateResult r = model.updateIntact(e, kStep, size, onset);
+      const UpdateResult r = model.updateIntact(e, kStep, size, onset, SnapBackPolicy::Stop);
       benchmark::DoNotOptimize(r.stress);
       e -= kStep;
     }
@@ -183,7 +183,7 @@ void BM_MaterialUpdateMany(benchmark::State& st) {
   const auto size = EffectiveSize::fixed(2.5);
   std::vector<MaterialPoint> points(cracked ? 10000 : 100000);
   for (MaterialPoint& q : points)
-    for (int i = 0; cracked && i < 40; ++i) m.update(q, Voigt(5e-6, -1e-6, 1e-6), size);
+    for (int i = 0; cracked && i < 40; ++i) m.update(q, Voigt(5e-6, -1e-6, 1e-6), size, SnapBackPolicy::Stop);
   const UpdateOptions options{SnapBackPolicy::Stop, false};
   double sign = 1.0;
   for (auto _ : st) {

@@ -47,7 +47,7 @@ StepOutcome mixedControlStep(const PointUpdate& update, const Tangent& elastic, 
                              const Voigt& currentStress, const MixedTarget& target, const MixedControlSettings& s);
 inline StepOutcome mixedControlStep(const Material& material, MaterialPoint& point, const Voigt& currentStress,
                                     const MixedTarget& target, const EffectiveSize& size, const MixedControlSettings& s,
-                                    SnapBackPolicy policy = SnapBackPolicy::Stop) {
+                                    SnapBackPolicy policy) {
   UpdateOptions options(policy);
   for (int i = 0; i < 3; ++i)
     if (target.control[i] == Control::Stress) options.stressControlled |= 1u << i;

@@ -64,7 +64,7 @@ class Runner {
       if (!stepToOnsetInside(k, t)) return false;
       aim();  // the rest of the increment, from the onset state
       const MaterialPoint start = point_;
-      const StepOutcome out = mixedControlStep(material_, point_, stress_, t, size_, settings_);
+      const StepOutcome out = mixedControlStep(material_, point_, stress_, t, size_, settings_, SnapBackPolicy::Stop);
       if (out.result.status == UpdateStatus::SnapBack) {
         if (!snapBack(k, t)) return false;
         continue;
@@ -144,7 +144,7 @@ class Runner {
     for (int c = 0; c < 3; ++c)
       if (t.control[c] == Control::Strain) rest.strainIncrement[c] = start.strain[c] + t.strainIncrement[c] - peak->point.strain[c];
     MaterialPoint end = peak->point;
-    const StepOutcome restOut = mixedControlStep(material_, end, peak->out.step.result.stress, rest, size_, settings_);
+    const StepOutcome restOut = mixedControlStep(material_, end, peak->out.step.result.stress, rest, size_, settings_, SnapBackPolicy::Stop);
     if (!restOut.converged()) return false;
     point_ = peak->point;
     record(k, increment_ + 1, peak->out.step, false, false, true, kPeakRow);
@@ -164,7 +164,7 @@ class Runner {
     if (!alpha || *alpha >= 1.0 || *alpha <= 0.0) return true;
     StepOutcome out;
     out.strainIncrement = *alpha * d * (1.0 + 1e-13);  // just past the root: the onset is met
-    out.result = material_.update(point_, out.strainIncrement, size_);
+    out.result = material_.update(point_, out.strainIncrement, size_, SnapBackPolicy::Stop);
     out.dissipation = out.result.dissipation;
     if (!out.converged()) return fail(out, k, 0);
     record(k, increment_ + 1, out, false, false, true, kOnsetRow);
@@ -459,7 +459,7 @@ class Runner {
     }
     StepOutcome out;
     const Voigt step = *alpha * scale * unit * (1.0 + 1e-13);
-    out.result = material_.update(point_, step, size_);
+    out.result = material_.update(point_, step, size_, SnapBackPolicy::Stop);
     out.strainIncrement = step;
     out.dissipation = out.result.dissipation;
     if (!out.converged() || !point_.band) return fail(out, k, 0);

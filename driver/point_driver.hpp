@@ -18,7 +18,7 @@ struct PointScene {
   std::vector<Segment> path;
   // At a snap-back of the point: Stop stops at the limit point; Release reports it, finds the
   // stable state at the same strain (opening control) and goes on.
-  SnapBackPolicy snapBack = SnapBackPolicy::Release;
+  SnapBackPolicy snapBack = kDefaultSnapBack;
   double relativeTolerance = 1e-8;  // stress control residual <= this * f_t' (or * 1 MPa if elastic)
   int substepLevels = 10;           // a failing increment is retried in 2, 4, ... 2^levels pieces (0: never)
   // The one check of a point scene's values; throws io::ValueError naming the key (runPoint and

@@ -29,7 +29,7 @@ struct PointScene3 {
   MaterialParams material;      // hypothesis ThreeDimensional
   double effectiveSize = 0.0;   // H (mm)
   std::vector<Segment3> path;
-  SnapBackPolicy snapBack = SnapBackPolicy::Release;
+  SnapBackPolicy snapBack = kDefaultSnapBack;
   double relativeTolerance = 1e-8;  // stress control residual <= this * f_t' (or * 1 MPa if elastic)
   int substepLevels = 10;
 };

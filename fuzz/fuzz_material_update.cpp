@@ -60,7 +60,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (int i = 0; i < 64 && b.more(); ++i) {
     const ecm::Voigt d = scale * b.logRange(1e-4, 1e4) * ecm::Voigt(2 * b.unit() - 1, 2 * b.unit() - 1, 2 * b.unit() - 1);
     const ecm::MaterialPoint before = point;
-    const ecm::UpdateResult r = m.update(point, d, size_);
+    const ecm::UpdateResult r = m.update(point, d, size_, ecm::SnapBackPolicy::Stop);
     if (!r.converged()) {
       require(point.strain == before.strain && point.integrity == before.integrity &&
                   point.band.has_value() == before.band.has_value() &&

@@ -123,8 +123,8 @@ MaterialParams readMaterial(const YamlMap& map, const std::filesystem::path& dat
 
 SnapBackPolicy readSnapBackPolicy(const YamlMap& map) {
   map.reject("on_snapback", "renamed: write snap_back: release (was jump) or snap_back: stop");
-  return map.getEnumOr("snap_back", {"release", "stop"}, "release") == "stop" ? SnapBackPolicy::Stop
-                                                                            : SnapBackPolicy::Release;
+  return *snapBackPolicyOf(map.getEnumOr("snap_back", {toString(SnapBackPolicy::Release), toString(SnapBackPolicy::Stop)},
+                                         toString(kDefaultSnapBack)));
 }
 
 MaterialParams loadMaterialFile(const std::filesystem::path& path) {

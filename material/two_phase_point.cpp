@@ -440,19 +440,20 @@ UpdateResult TwoPhasePoint::updateIntactSlow(Voigt& strain, const Voigt& increme
   return r;
 }
 
-UpdateResult TwoPhasePoint::update(EnrichedState& state, const Voigt& increment, const EffectiveSize& size) const {
+UpdateResult TwoPhasePoint::update(EnrichedState& state, const Voigt& increment, const EffectiveSize& size,
+                                   UpdateOptions options) const {
   if (!opensSecondBand()) {
-    if (state.band) return updateCracked(*state.band, state.strain, increment);
-    return updateIntact(state.strain, increment, size, state.band);
+    if (state.band) return updateCracked(*state.band, state.strain, increment, options);
+    return updateIntact(state.strain, increment, size, state.band, options);
   }
   if (state.band) {
     std::optional<BandState> second;
     const UpdateResult r = updateCracked(*state.band, state.secondBand ? &*state.secondBand : nullptr, state.strain,
-                                         increment, size, second);
+                                         increment, size, second, options);
     if (second) state.secondBand = second;
     return r;
   }
-  return updateIntact(state.strain, increment, size, state.band, state.secondBand);
+  return updateIntact(state.strain, increment, size, state.band, state.secondBand, options);
 }
 
 }  // namespace ecm

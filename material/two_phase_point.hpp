@@ -9,6 +9,7 @@
 #include "material/band_damage_law.hpp"
 #include "material/driving_force.hpp"
 #include "material/effective_size.hpp"
+#include "material/snap_back_policy.hpp"
 #include "material/secant_response.hpp"
 
 namespace ecm {
@@ -80,17 +81,9 @@ struct BandEquilibrium {
   Mat2 jacobian = Mat2::Zero();      // K = -d residual / d[u] = C / (1 - f), Eq. (9)
 };
 
-// What an update does when Eq. (6) has no stable root under the given strain (a snap-back).
-// One vocabulary from the scenes (`snap_back: stop | release`, both tools) to the code.
-enum class SnapBackPolicy {
-  Stop,     // the update returns UpdateStatus::SnapBack with the state unchanged; ecm-mpm stops the
-            // run there, ecm-point stops at the limit point (the driver also uses it to find it)
-  Release,  // the band fails at the end strain onto its stable branch (both tools' default)
-};
-
 // What the caller of an update needs besides the stress and the new state.
 struct UpdateOptions {
-  SnapBackPolicy snapBack = SnapBackPolicy::Stop;
+  SnapBackPolicy snapBack = kDefaultSnapBack;  // material/snap_back_policy.hpp
   bool tangent = true;  // the consistent tangent of Eq. (10); an explicit solver does not use it
   // Bit i set: the caller holds Voigt stress component i fixed (mixed control) and solves for
   // its strain. A state is then stable only if the consistent tangent's block of these
@@ -111,7 +104,8 @@ class TwoPhasePoint {
   explicit TwoPhasePoint(const EnrichedParams& p);
 
   // The UMAT-style update of a point. On failure the state is left unchanged.
-  UpdateResult update(EnrichedState& state, const Voigt& strainIncrement, const EffectiveSize& size) const;
+  UpdateResult update(EnrichedState& state, const Voigt& strainIncrement, const EffectiveSize& size,
+                      UpdateOptions options = {}) const;
 
   // The two halves of update(), for callers (MPM) that keep band states in a side array.
   // Intact point: elastic, or onset inside the increment; then `onset` receives the new band

@@ -93,7 +93,7 @@ struct ImplicitSolver::Attempt {
   double dTau = 0.0;                     // indirect control: the opening's increment
   Trial trial;                           // at du
   ImplicitStepReport report;
-  SnapBackPolicy snapBack = SnapBackPolicy::Stop;
+  SnapBackPolicy snapBack = SnapBackPolicy::Stop;  // set by each attempt: Stop, or Release under the scene's release
   double reuseRatio = 0.1;               // ImplicitOptions::reuseRatio, 0 after a failed attempt (Newton proper)
   int maxIterations = 25;                // ImplicitOptions::maxIterations, 4 times that at the last halving
   bool lastResort = false;               // the last halving: no early stall test, its whole maxIterations

@@ -114,7 +114,7 @@ struct SolverSettings {
   // Enriched points whose loading branch turns back (no stable root of Eq. (6) under the
   // increment): Release lets the band fail onto its stable branch (counted, reported); Stop
   // stops the run with the point's position and state (docs/model.md, "Snap-back on the path").
-  SnapBackPolicy snapBack = SnapBackPolicy::Release;
+  SnapBackPolicy snapBack = kDefaultSnapBack;
   CrackPathRule crackPath = CrackPathRule::Free;
   // The scheme: explicit (explicitScheme) unless `implicit` is set (scheme: implicit_static).
   ExplicitSettings explicitScheme;

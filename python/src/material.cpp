@@ -21,8 +21,7 @@ namespace ecm::python {
 namespace {
 
 SnapBackPolicy policyOf(const std::string& s) {
-  if (s == "stop") return SnapBackPolicy::Stop;
-  if (s == "release") return SnapBackPolicy::Release;
+  if (const std::optional<SnapBackPolicy> p = snapBackPolicyOf(s)) return *p;
   throw py::value_error("snap_back must be 'stop' or 'release', got '" + s + "'");
 }
 
@@ -311,7 +310,7 @@ void bindMaterial(py::module_& m) {
             return mat.update(point, increment, sizeOf(mat, effectiveSize), optionsOf(tangent, snapBack, substepLevels));
           },
           py::arg("state"), py::arg("strain_increment"), py::arg("H"), py::arg("tangent") = true,
-          py::arg("snap_back") = "stop", py::arg("substep_levels") = 0,
+          py::arg("snap_back") = toString(kDefaultSnapBack), py::arg("substep_levels") = 0,
           "Updates `state` in place by the strain increment (eps_xx, eps_yy, gamma_xy) in the effective size H (mm); "
           "the state is committed only if the result converged.")
       .def("stress", &Material::stress, py::arg("state"), "the stress (MPa) of a state, without changing it")
@@ -365,7 +364,7 @@ void bindMaterial(py::module_& m) {
             return out;
           },
           py::arg("points"), py::arg("strain_increments"), py::arg("H"), py::arg("tangent") = false,
-          py::arg("snap_back") = "stop", py::arg("substep_levels") = 0,
+          py::arg("snap_back") = toString(kDefaultSnapBack), py::arg("substep_levels") = 0,
           "update() of every point of a PointArray (in place) with the rows of an (N, 3) array of strain increments; "
           "returns a dict of arrays: stress (N, 3), dissipation (N,), status (N,) (an index into ecm.STATUS), and "
           "tangent (N, 3, 3) if asked. The GIL is released while it runs.");

@@ -1,4 +1,5 @@
 // ecm-point scene files: bad input is rejected with the file, the line and the reason.
+#include "driver/point_driver_3d.hpp"
 #include "driver/point_scene_yaml.hpp"
 
 #include <gtest/gtest.h>
@@ -64,7 +65,9 @@ TEST(PointSceneYaml, SnapBackKeyIsSharedWithMpmScenesAndTheOldKeyNamesTheNewOne)
   EXPECT_EQ(readPointScene(io::parseYaml(kMaterial + "effective_size: 10\nsnap_back: stop\n" + path, "s.yaml")).snapBack,
             SnapBackPolicy::Stop);
   EXPECT_EQ(readPointScene(io::parseYaml(kMaterial + "effective_size: 10\n" + path, "s.yaml")).snapBack,
-            SnapBackPolicy::Release);
+            kDefaultSnapBack);  // release (material/snap_back_policy.hpp)
+  EXPECT_EQ(PointScene{}.snapBack, kDefaultSnapBack);
+  EXPECT_EQ(PointScene3{}.snapBack, kDefaultSnapBack);
   expectRejected("effective_size: 10\non_snapback: jump\n" + path, 12, "snap_back: release (was jump)");
   expectRejected("effective_size: 10\nsnap_back: jump\n" + path, 12, "release");
 }

@@ -45,7 +45,7 @@ TEST(Parameters, EffectiveSizeMustExceedTheBandWidth) {
   // Eq. (1): f = h / H must lie in (0, 1).
   const Material m(concrete());
   MaterialPoint point;
-  const UpdateResult r = m.update(point, Voigt(1e-3, 0.0, 0.0), EffectiveSize::fixed(test::kBandWidth));
+  const UpdateResult r = m.update(point, Voigt(1e-3, 0.0, 0.0), EffectiveSize::fixed(test::kBandWidth), SnapBackPolicy::Stop);
   EXPECT_EQ(r.status, UpdateStatus::SizeTooSmall);
   EXPECT_EQ(r.refusedSize, test::kBandWidth);
   EXPECT_FALSE(point.band);

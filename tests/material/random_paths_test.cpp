@@ -128,7 +128,7 @@ void checkModel(ModelKind kind, Hypothesis hyp, SecondBandOption option, std::ui
           Voigt e = Voigt::Zero();
           e[j] = delta;
           MaterialPoint a = before, b = before;
-          const UpdateResult ra = m.update(a, d + e, size), rb = m.update(b, d - e, size);
+          const UpdateResult ra = m.update(a, d + e, size, SnapBackPolicy::Stop), rb = m.update(b, d - e, size, SnapBackPolicy::Stop);
           smooth = ra.converged() && rb.converged() && a.damage() > before.damage() && b.damage() > before.damage();
           const Principal pa = principalStresses(m.stiffness() * (a.band ? a.band->onsetStrain : a.strain));
           smooth = smooth && std::abs(pa.second) > 1e-6 * std::abs(pa.first);

@@ -84,7 +84,7 @@ struct PointRun {
 
   UpdateResult step(const Voigt& d) {
     MaterialPoint next = point;
-    const UpdateResult r = m.update(next, d, size);
+    const UpdateResult r = m.update(next, d, size, SnapBackPolicy::Stop);
     if (!r.converged()) return r;
     if (next.secondBand && !point.secondBand) ++secondBandOpenings;
     work += 0.5 * (stress + r.stress).dot(d);  // trapezoid of sigma : d eps
@@ -99,7 +99,7 @@ struct PointRun {
     const test::TrialUpdate trial = [this](const Voigt& d, bool commit) {
       if (commit) return step(d);
       MaterialPoint p = point;
-      return m.update(p, d, size);
+      return m.update(p, d, size, SnapBackPolicy::Stop);
     };
     const double scale = 1.0 + m.stiffness()(0, 0) * std::abs(point.strain[0]);
     return test::uniaxialStressStep(trial, dExx, m.stiffness(), 1e-11 * scale).has_value();
@@ -258,7 +258,7 @@ TEST(SecondBand, TangentMatchesFiniteDifferences) {
   };
   for (const Case& c : cases) {
     MaterialPoint p = start;
-    const UpdateResult r = m.update(p, c.increment, size);
+    const UpdateResult r = m.update(p, c.increment, size, SnapBackPolicy::Stop);
     ASSERT_TRUE(r.converged()) << c.name;
     EXPECT_EQ(p.band->integrity < start.band->integrity, c.firstLoads) << c.name;
     EXPECT_EQ(p.secondBand->integrity < start.secondBand->integrity, c.secondLoads) << c.name;
@@ -268,7 +268,7 @@ TEST(SecondBand, TangentMatchesFiniteDifferences) {
       Voigt e = Voigt::Zero();
       e[j] = delta;
       MaterialPoint a = start, b = start;
-      const UpdateResult ra = m.update(a, c.increment + e, size), rb = m.update(b, c.increment - e, size);
+      const UpdateResult ra = m.update(a, c.increment + e, size, SnapBackPolicy::Stop), rb = m.update(b, c.increment - e, size, SnapBackPolicy::Stop);
       ASSERT_TRUE(ra.converged() && rb.converged());
       fd.col(j) = (ra.stress - rb.stress) / (2.0 * delta);
     }
@@ -500,7 +500,7 @@ TEST(SecondBand, RefusesAnEffectiveSizeWithoutRoomForTwoBands) {
   MaterialPoint p;
   const auto size = EffectiveSize::fixed(1.5 * test::kBandWidth);  // f1 + f2 = 4/3
   UpdateResult r;
-  for (int i = 0; i < 400 && r.converged(); ++i) r = m.update(p, Voigt(2e-6, 2e-6, 0.0), size);
+  for (int i = 0; i < 400 && r.converged(); ++i) r = m.update(p, Voigt(2e-6, 2e-6, 0.0), size, SnapBackPolicy::Stop);
   EXPECT_EQ(r.status, UpdateStatus::SizeTooSmall);
   EXPECT_EQ(r.refusedSize, 1.5 * test::kBandWidth);
   EXPECT_NE(m.explain(r).find("2 h (1 + 1e-06) = 0.1000001 mm"), std::string::npos) << m.explain(r);

@@ -53,12 +53,12 @@ TEST(SnapBackRelease, LandsOnTheClosedFormFarBranchAndKeepsTheFractureEnergy) {
   Voigt strain = Voigt::Zero();
   std::optional<BandState> band;
   const Voigt d(0.01 * onset, 0.0, 0.0);
-  for (int i = 0; i < 100 && !band; ++i) ASSERT_TRUE(m.updateIntact(strain, d, size, band).converged());
+  for (int i = 0; i < 100 && !band; ++i) ASSERT_TRUE(m.updateIntact(strain, d, size, band, SnapBackPolicy::Stop).converged());
   ASSERT_TRUE(band);
   double dissipation = 0.0;
   BandState reported = *band;
   Voigt reportedStrain = strain;
-  const UpdateResult r0 = m.updateCracked(reported, reportedStrain, d);
+  const UpdateResult r0 = m.updateCracked(reported, reportedStrain, d, SnapBackPolicy::Stop);
   EXPECT_EQ(r0.status, UpdateStatus::SnapBack);
   EXPECT_EQ(reported.integrity, band->integrity);
   EXPECT_EQ(reportedStrain, strain);
@@ -130,7 +130,7 @@ TEST(SnapBackRelease, MixedModeSnapBackOfARecordedDenPointIsReleasedOntoAStableB
   // Report: even 4096 sub-steps reach a sub-step with no stable root.
   bool snapped = false;
   for (int i = 0; i < 4096 && !snapped; ++i) {
-    const UpdateResult r = m.updateCracked(b, strain, s.increment / 4096);
+    const UpdateResult r = m.updateCracked(b, strain, s.increment / 4096, SnapBackPolicy::Stop);
     snapped = r.status == UpdateStatus::SnapBack;
     if (!snapped) {
       ASSERT_TRUE(r.converged());
@@ -198,7 +198,7 @@ TEST(CrackedUpdate, NearlyFailedBandUnloadingInShearConvergesElastically) {
   Voigt strain(-7.3660606250015885e-06, 0.0001589369263255925, -2.3054140240754505e-05);
   const Voigt d(-2.4834870819812561e-07, -3.4598335287910377e-08, -1.1732933864320074e-07);
   const double x0 = b.integrity;
-  const UpdateResult r = m.updateCracked(b, strain, d);
+  const UpdateResult r = m.updateCracked(b, strain, d, SnapBackPolicy::Stop);
   ASSERT_TRUE(r.converged()) << toString(r.status);
   EXPECT_FALSE(r.released);
   EXPECT_EQ(b.integrity, x0);

@@ -34,12 +34,12 @@ struct Point {
   EffectiveSize size = EffectiveSize::fixed(2.5);
   explicit Point(const MaterialParams& p) : material(p) {}
   void load(const Voigt& increment, int steps) {
-    for (int i = 0; i < steps; ++i) ASSERT_TRUE(material.update(point, increment / steps, size).converged());
+    for (int i = 0; i < steps; ++i) ASSERT_TRUE(material.update(point, increment / steps, size, SnapBackPolicy::Stop).converged());
   }
   Probe probe() const {
     return [this](const Voigt& d) {
       MaterialPoint copy = point;
-      return material.update(copy, d, size);
+      return material.update(copy, d, size, SnapBackPolicy::Stop);
     };
   }
 };

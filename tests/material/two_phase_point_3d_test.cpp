@@ -54,8 +54,8 @@ TEST(TwoPhasePoint3D, TensionThenShearIsObjectiveUnderAnyRotation) {
     const Mat3 r = trial == 0 ? Mat3::Identity() : randomRotation(rng);
     MaterialPoint3 a, b;
     for (std::size_t k = 0; k < path.size(); ++k) {
-      const UpdateResult3 ra = m.update(a, path[k], size);
-      const UpdateResult3 rb = m.update(b, rotateStrain3(path[k], r), size);
+      const UpdateResult3 ra = m.update(a, path[k], size, SnapBackPolicy::Stop);
+      const UpdateResult3 rb = m.update(b, rotateStrain3(path[k], r), size, SnapBackPolicy::Stop);
       ASSERT_TRUE(ra.converged() && rb.converged()) << "increment " << k;
       EXPECT_LE((rotateStress3(ra.stress, r) - rb.stress).cwiseAbs().maxCoeff(), 1e-10 * test::kFt) << "increment " << k;
       EXPECT_NEAR(a.damage(), b.damage(), 1e-10);
@@ -99,8 +99,8 @@ TEST(TwoPhasePoint3D, PlaneStrainIn3DIsThe2DPlaneStrainPointOnRandomPaths) {
     MaterialPoint p2;
     MaterialPoint3 p3;
     for (const Eigen::Vector3d& d : randomPlanePath(rng, 40)) {
-      const UpdateResult r2 = m2.update(p2, d, EffectiveSize::fixed(h));
-      const UpdateResult3 r3 = m3.update(p3, fromInPlane(d), EffectiveSize3::fixed(h));
+      const UpdateResult r2 = m2.update(p2, d, EffectiveSize::fixed(h), SnapBackPolicy::Stop);
+      const UpdateResult3 r3 = m3.update(p3, fromInPlane(d), EffectiveSize3::fixed(h), SnapBackPolicy::Stop);
       ASSERT_EQ(r2.converged(), r3.converged());
       if (!r2.converged()) break;
       ++compared;
@@ -131,8 +131,8 @@ TEST(TwoPhasePoint3D, UniaxialTensionWithoutPoissonIsThe2DPlaneStressCurveAlongA
     MaterialPoint p2;
     MaterialPoint3 p3;
     for (double de : path) {
-      const UpdateResult r2 = m2.update(p2, Voigt(de, 0.0, 0.0), EffectiveSize::fixed(10.0));
-      const UpdateResult3 r3 = m3.update(p3, uniaxialStrain(d, de), EffectiveSize3::fixed(10.0));
+      const UpdateResult r2 = m2.update(p2, Voigt(de, 0.0, 0.0), EffectiveSize::fixed(10.0), SnapBackPolicy::Stop);
+      const UpdateResult3 r3 = m3.update(p3, uniaxialStrain(d, de), EffectiveSize3::fixed(10.0), SnapBackPolicy::Stop);
       ASSERT_TRUE(r2.converged() && r3.converged());
       const Voigt6 expected = stressVoigt(r2.stress[0] * d * d.transpose());  // sigma d (x) d
       EXPECT_LE((r3.stress - expected).cwiseAbs().maxCoeff(), 1e-10 * test::kFt);
@@ -145,7 +145,7 @@ TEST(TwoPhasePoint3D, UniaxialTensionWithoutPoissonIsThe2DPlaneStressCurveAlongA
 // components held at zero (Newton on their strains with the consistent tangent's block).
 bool uniaxialStressStep3(const Material3D& m, MaterialPoint3& p, double dExx, const EffectiveSize3& size,
                          Voigt6& stress) {
-  UpdateOptions options;
+  UpdateOptions options(SnapBackPolicy::Stop);
   options.stressControlled = 0b111110u;
   Voigt6 d = Voigt6::Zero();
   d[0] = dExx;
@@ -228,7 +228,7 @@ TEST(TwoPhasePoint3D, DissipatesTheFractureEnergyPerUnitAreaForNormalsAlongAndOf
     MaterialPoint3 p;
     double dissipated = 0.0, e = 0.0, de = 1e-7;
     while (e < 20.0 * test::kBandWidth / bigH + 1e-2) {
-      const UpdateResult3 r = m.update(p, uniaxialStrain(d, de), EffectiveSize3::fixed(bigH));
+      const UpdateResult3 r = m.update(p, uniaxialStrain(d, de), EffectiveSize3::fixed(bigH), SnapBackPolicy::Stop);
       ASSERT_TRUE(r.converged()) << e;
       dissipated += r.dissipation;
       e += de;
@@ -243,7 +243,7 @@ TEST(TwoPhasePoint3D, DissipatesTheFractureEnergyPerUnitAreaForNormalsAlongAndOf
 // Relative error of the consistent tangent against central differences of the update.
 double tangentError3(const Material3D& m, const MaterialPoint3& p, const Voigt6& d, const EffectiveSize3& size) {
   MaterialPoint3 q = p;
-  const UpdateResult3 r = m.update(q, d, size);
+  const UpdateResult3 r = m.update(q, d, size, SnapBackPolicy::Stop);
   EXPECT_TRUE(r.converged());
   Tangent6 fd;
   const double delta = 1e-9;
@@ -251,7 +251,7 @@ double tangentError3(const Material3D& m, const MaterialPoint3& p, const Voigt6&
     Voigt6 e = Voigt6::Zero();
     e[j] = delta;
     MaterialPoint3 a = p, b = p;
-    const UpdateResult3 ra = m.update(a, d + e, size), rb = m.update(b, d - e, size);
+    const UpdateResult3 ra = m.update(a, d + e, size, SnapBackPolicy::Stop), rb = m.update(b, d - e, size, SnapBackPolicy::Stop);
     EXPECT_TRUE(ra.converged() && rb.converged());
     fd.col(j) = (ra.stress - rb.stress) / (2.0 * delta);
   }
@@ -267,7 +267,7 @@ TEST(TwoPhasePoint3D, TangentMatchesFiniteDifferencesInEveryRegime) {
   tension << 1.0, 0.1, 0.15, 0.05, 0.1, 0.2;  // principal axes off the grid axes
   MaterialPoint3 p;
   const auto load = [&](const Voigt6& d, int steps) {
-    for (int i = 0; i < steps; ++i) ASSERT_TRUE(m.update(p, d / steps, size).converged());
+    for (int i = 0; i < steps; ++i) ASSERT_TRUE(m.update(p, d / steps, size, SnapBackPolicy::Stop).converged());
   };
   EXPECT_LT(tangentError3(m, p, 5e-5 * tension, size), 1e-6) << "elastic";
   load(1.2e-4 * tension, 20);
@@ -282,7 +282,7 @@ TEST(TwoPhasePoint3D, TangentMatchesFiniteDifferencesInEveryRegime) {
   shear << 1.0, 0.0, 0.0, 0.6, 0.8, 1.0;
   const double before = p.damage();
   MaterialPoint3 q = p;
-  ASSERT_TRUE(m.update(q, 1e-5 * shear, size).converged());
+  ASSERT_TRUE(m.update(q, 1e-5 * shear, size, SnapBackPolicy::Stop).converged());
   ASSERT_GT(q.damage(), before);
   EXPECT_LT(tangentError3(m, p, 1e-5 * shear, size), 1e-6) << "mixed mode";
 }
@@ -309,7 +309,7 @@ TEST(TwoPhasePoint3D, RandomPathsKeepThePhysics) {
       if (u(rng) < 0.15) dir = rotateStrain3(dir, randomRotation(rng));
       const Voigt6 d = std::pow(10.0, -6.0 + 2.0 * u(rng)) * dir;
       const MaterialPoint3 before = p;
-      const UpdateResult3 r = m.update(p, d, size);
+      const UpdateResult3 r = m.update(p, d, size, SnapBackPolicy::Stop);
       if (!r.converged()) {
         ASSERT_EQ(p.strain, before.strain);
         ASSERT_EQ(p.band.has_value(), before.band.has_value());
@@ -337,7 +337,7 @@ TEST(TwoPhasePoint3D, RandomPathsKeepThePhysics) {
           Voigt6 dj = Voigt6::Zero();
           dj[j] = delta;
           MaterialPoint3 a = before, b = before;
-          const UpdateResult3 ra = m.update(a, d + dj, size), rb = m.update(b, d - dj, size);
+          const UpdateResult3 ra = m.update(a, d + dj, size, SnapBackPolicy::Stop), rb = m.update(b, d - dj, size, SnapBackPolicy::Stop);
           smooth = ra.converged() && rb.converged() && a.damage() > before.damage() && b.damage() > before.damage();
           fd.col(j) = (ra.stress - rb.stress) / (2.0 * delta);
         }
@@ -378,7 +378,7 @@ TEST(TwoPhasePoint3D, AnIntactUpdateIsTheProductWithTheStiffness) {
     const bool surely = model.onsetFraction(strain, d) == std::nullopt &&
                         model.onsetFraction(Voigt6::Zero(), strain) == std::nullopt;
     std::optional<BandState3> opened;
-    const UpdateResult3 r = model.updateIntact(strain, d, size, opened);
+    const UpdateResult3 r = model.updateIntact(strain, d, size, opened, SnapBackPolicy::Stop);
     if (opened || !surely) continue;
     ASSERT_TRUE(r.converged());
     for (int c = 0; c < 6; ++c) ASSERT_EQ(std::bit_cast<std::uint64_t>(r.stress[c]), std::bit_cast<std::uint64_t>(product[c])) << k;

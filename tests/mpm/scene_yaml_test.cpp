@@ -25,6 +25,18 @@ conditions:
   - {name: base, box: {min: [0, 0], max: [100, 0]}, fixed: [x, y]}
 )";
 
+TEST(SceneYaml, TheSnapBackDefaultIsReleaseInEveryReader) {
+  // docs/inputs.md: `snap_back: release` is the default; it has one home
+  // (material/snap_back_policy.hpp), which the scene reader and the settings' defaults read.
+  static_assert(kDefaultSnapBack == SnapBackPolicy::Release);
+  EXPECT_EQ(SolverSettings{}.snapBack, kDefaultSnapBack);
+  EXPECT_EQ(readScene(io::parseYaml(kScene, "t.yaml")).solver.snapBack, kDefaultSnapBack);
+  EXPECT_EQ(readScene(io::parseYaml(kScene + "solver: {snap_back: stop}\n", "t.yaml")).solver.snapBack, SnapBackPolicy::Stop);
+  EXPECT_STREQ(toString(kDefaultSnapBack), "release");
+  EXPECT_EQ(snapBackPolicyOf("stop"), SnapBackPolicy::Stop);
+  EXPECT_EQ(snapBackPolicyOf("jump"), std::nullopt);
+}
+
 TEST(SceneYaml, ShippedSecondBandScenesDifferOnlyInTheMaterialOption) {
   for (const std::string mesh : {"coarse", "medium", "fine", "coarse-implicit", "medium-implicit"}) {
     const auto dir = std::filesystem::path(ECM_SOURCE_DIR) / "data" / "den";

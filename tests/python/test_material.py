@@ -205,3 +205,22 @@ def test_fields_say_their_units():
     for error in (ecm.InputError, ecm.ParameterError, ecm.CalibrationError, ecm.OutputError, ecm.CheckpointError):
         assert error.__doc__ and len(error.__doc__) > 40
     assert "mm" in ecm.read_mpm_output.__doc__ and "N" in ecm.read_mpm_output.__doc__
+
+
+def test_the_snap_back_default_is_the_scenes_release():
+    # One default for snap_back everywhere (material/snap_back_policy.hpp): release, as in the
+    # YAML. H = 500 mm is above the paper concrete's snap-back size h (E + E_p) / E_p = 196 mm
+    # (docs/model.md, identities): pulled in x, the point has no stable branch past its peak.
+    m = ecm.Material(**CONCRETE)
+    by_default, stopping = ecm.PointState(), ecm.PointState()
+    released = stopped = False
+    for _ in range(200):
+        r = m.update(by_default, [1e-6, 0.0, 0.0], 500.0)
+        assert r.converged
+        released = released or r.released
+        s = m.update(stopping, [1e-6, 0.0, 0.0], 500.0, snap_back="stop")
+        if not s.converged:
+            stopped = s.status == "snap-back"
+            break
+    assert released
+    assert stopped
