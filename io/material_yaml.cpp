@@ -94,8 +94,7 @@ MaterialParams readInline(const YamlMap& m, const std::string& defaultName) {
   }
   p.bandWidth = modelKey(m, "band_width", p.model == ModelKind::Enriched, model);
   if (p.model == ModelKind::Enriched) {
-    p.secondBand = m.getEnumOr("second_band", {"off", "orthogonal"}, "off") == "orthogonal" ? SecondBandOption::Orthogonal
-                                                                                          : SecondBandOption::Off;
+    p.secondBand = m.getEnumOr("second_band", std::array{SecondBandOption::Off, SecondBandOption::Orthogonal}, p.secondBand);
   } else {
     m.reject("second_band", "is used by model enriched only (model " + model + " has no band)");
   }
@@ -123,8 +122,7 @@ MaterialParams readMaterial(const YamlMap& map, const std::filesystem::path& dat
 
 SnapBackPolicy readSnapBackPolicy(const YamlMap& map) {
   map.reject("on_snapback", "renamed: write snap_back: release (was jump) or snap_back: stop");
-  return *snapBackPolicyOf(map.getEnumOr("snap_back", {toString(SnapBackPolicy::Release), toString(SnapBackPolicy::Stop)},
-                                         toString(kDefaultSnapBack)));
+  return map.getEnumOr("snap_back", std::array{SnapBackPolicy::Release, SnapBackPolicy::Stop}, kDefaultSnapBack);
 }
 
 MaterialParams loadMaterialFile(const std::filesystem::path& path) {

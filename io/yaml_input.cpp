@@ -288,6 +288,10 @@ template double YamlMap::getOr<double>(const std::string&, const double&, const 
 template int YamlMap::getOr<int>(const std::string&, const int&, const Range&) const;
 
 std::string YamlMap::getEnum(const std::string& key, std::initializer_list<std::string_view> allowed) const {
+  return getEnum(key, std::span<const std::string_view>(allowed.begin(), allowed.size()));
+}
+
+std::string YamlMap::getEnum(const std::string& key, std::span<const std::string_view> allowed) const {
   const std::string v = get<std::string>(key);
   std::string list;
   for (const auto a : allowed) {

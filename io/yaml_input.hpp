@@ -4,12 +4,14 @@
 // Keys that were never asked for are rejected by finish() ("unknown key 'foo' (allowed: ...)").
 #include <yaml-cpp/yaml.h>
 
+#include <array>
 #include <concepts>
 #include <cstddef>
 #include <filesystem>
 #include <initializer_list>
 #include <limits>
 #include <memory>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -75,6 +77,19 @@ class YamlMap {
   std::string getEnum(const std::string& key, std::initializer_list<std::string_view> allowed) const;
   std::string getEnumOr(const std::string& key, std::initializer_list<std::string_view> allowed,
                         const std::string& fallback) const;
+  // An enum by its spellings (toString of each of `values`, in that order in the error), or
+  // `fallback` where the key is absent: the default stays where the settings declare it.
+  template <class E, std::size_t N>
+  E getEnumOr(const std::string& key, const std::array<E, N>& values, E fallback) const {
+    if (!has(key)) return fallback;
+    std::array<std::string_view, N> names;
+    for (std::size_t i = 0; i < N; ++i) names[i] = toString(values[i]);
+    const std::string v = getEnum(key, std::span<const std::string_view>(names));
+    for (std::size_t i = 0; i < N; ++i)
+      if (v == names[i]) return values[i];
+    return fallback;  // not reached: getEnum refused anything else
+  }
+  std::string getEnum(const std::string& key, std::span<const std::string_view> allowed) const;
   // A sequence of numbers of exactly `size` entries (any non-zero length when size == 0).
   std::vector<double> getVector(const std::string& key, std::size_t size, const Range& range = Range::any()) const;
 

@@ -11,6 +11,10 @@ enum class EffectiveSizeRule {
   SquareRoot,// H = sqrt(cell area), the paper's simple choice
   Oriented,  // H = cell area / length of the crack line through the cell centre (Fig. 2)
 };
+// The scene spelling (`effective_size: sqrt | oriented`).
+constexpr const char* toString(EffectiveSizeRule r) {
+  return r == EffectiveSizeRule::SquareRoot ? "sqrt" : (r == EffectiveSizeRule::Oriented ? "oriented" : "fixed");
+}
 
 struct EffectiveSize {
   EffectiveSizeRule rule = EffectiveSizeRule::Fixed;

@@ -71,6 +71,8 @@ inline std::optional<std::size_t> findCondition(const std::vector<NodeCondition>
 }
 
 enum class LoadTarget { Nodes, Particles };
+// The scene spelling (`on: particles | nodes`).
+constexpr const char* toString(LoadTarget t) { return t == LoadTarget::Nodes ? "nodes" : "particles"; }
 
 // Total force `force * history(t)` (N) spread equally over the nodes or particles in `box`.
 struct Load {

@@ -95,12 +95,8 @@ ImplicitSettings readImplicitSettings(const YamlMap& m) {
   im.maxHalvings = m.getOr<int>("max_halvings", im.maxHalvings);
   im.onsetOvershoot = m.getOr<double>("onset_overshoot", im.onsetOvershoot);
   im.acceptTolerance = m.getOr<double>("accept_tolerance", std::max(im.acceptTolerance, im.tolerance));
-  {
-    const std::string solver = m.getEnumOr("linear_solver", {"umfpack", "sparselu", "amg"}, toString(im.linearSolver));
-    im.linearSolver = solver == "umfpack" ? LinearSolverKind::Umfpack
-                      : solver == "amg"   ? LinearSolverKind::Amg
-                                          : LinearSolverKind::SparseLU;
-  }
+  im.linearSolver = m.getEnumOr("linear_solver", std::array{LinearSolverKind::Umfpack, LinearSolverKind::SparseLU, LinearSolverKind::Amg},
+                                im.linearSolver);
   if (m.has("control")) {
     const YamlMap c = m.child("control");
     const YamlMap i = c.child("indirect");
@@ -151,16 +147,14 @@ SolverSettings readSolver(const YamlMap& m, const std::string& preset) {
   if (!preset.empty())
     for (const char* k : {"shape_function", "scheme", "cfl"}) m.reject(k, presetOwns(preset));
   SolverSettings s;
-  const std::string scheme = m.getEnumOr("scheme", {"usf", "usl", "musl", "implicit_static"}, "usl");
-  const std::string shape = m.getEnumOr("shape_function", {"linear", "ugimp", "bspline2"}, "linear");
-  s.shapeFunction = shape == "ugimp" ? ShapeFunction::UGimp : (shape == "bspline2" ? ShapeFunction::BSpline2 : ShapeFunction::Linear);
-  s.effectiveSize = m.getEnumOr("effective_size", {"sqrt", "oriented"}, "sqrt") == "oriented" ? EffectiveSizeRule::Oriented
-                                                                                               : EffectiveSizeRule::SquareRoot;
+  const std::string scheme = m.getEnumOr("scheme", {"usf", "usl", "musl", "implicit_static"}, toString(ExplicitSettings{}.scheme));
+  s.shapeFunction = m.getEnumOr("shape_function", std::array{ShapeFunction::Linear, ShapeFunction::UGimp, ShapeFunction::BSpline2},
+                                s.shapeFunction);
+  s.effectiveSize = m.getEnumOr("effective_size", std::array{EffectiveSizeRule::SquareRoot, EffectiveSizeRule::Oriented}, s.effectiveSize);
   if (m.has("gravity")) s.gravity = vec2(m, "gravity");
   s.substepLevels = m.getOr<int>("substep_levels", s.substepLevels);
   s.snapBack = io::readSnapBackPolicy(m);
-  s.crackPath = m.getEnumOr("crack_path", {"tracked", "free"}, toString(s.crackPath)) == std::string("tracked") ? CrackPathRule::Tracked
-                                                                                                             : CrackPathRule::Free;
+  s.crackPath = m.getEnumOr("crack_path", std::array{CrackPathRule::Tracked, CrackPathRule::Free}, s.crackPath);
   if (scheme == "implicit_static") {
     for (const char* k : {"flip", "cfl", "local_damping", "viscous_damping"})
       m.reject(k, "is a key of explicit scenes (implicit_static has no time step, mass or damping)");
@@ -272,7 +266,7 @@ Load readLoad(const YamlMap& m) {
   Load l;
   l.name = m.get<std::string>("name");
   l.box = readBox(m.child("box"));
-  l.target = m.getEnumOr("on", {"particles", "nodes"}, "particles") == "nodes" ? LoadTarget::Nodes : LoadTarget::Particles;
+  l.target = m.getEnumOr("on", std::array{LoadTarget::Particles, LoadTarget::Nodes}, l.target);
   l.force = vec2(m, "force");
   if (m.has("history")) l.history = readTimeFunction(m.child("history"));
   return l;
