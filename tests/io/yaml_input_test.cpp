@@ -77,6 +77,17 @@ TEST(YamlInput, MissingKeyNamesTheKeyAndTheMapLine) {
   expectAt(inputError([&] { load.get<double>("duration"); }), "sample.yaml", 7, "missing key 'load.duration'");
 }
 
+enum class Colour { Red, Green };
+constexpr const char* toString(Colour c) { return c == Colour::Red ? "red" : "green"; }
+
+TEST(YamlInput, AnEnumIsReadByItsSpellingsWithTheCallersDefault) {
+  const YamlMap m = parseYaml("a: green\nb: blue\n", "t.yaml");
+  EXPECT_EQ(m.getEnumOr("a", std::array{Colour::Red, Colour::Green}, Colour::Red), Colour::Green);
+  EXPECT_EQ(m.getEnumOr("absent", std::array{Colour::Red, Colour::Green}, Colour::Green), Colour::Green);
+  expectAt(inputError([&] { m.getEnumOr("b", std::array{Colour::Red, Colour::Green}, Colour::Red); }), "t.yaml", 2,
+           "'blue' is not one of: red, green");
+}
+
 TEST(YamlInput, StringWhereANumberIsExpected) {
   const YamlMap m = parseYaml("a: 1\nb: abc\nc: '3.0'\n", "t.yaml");
   const InputError e = inputError([&] { m.get<double>("b"); });
