@@ -8,6 +8,7 @@
 
 #include "driver/golden_maximum.hpp"
 #include "driver/opening_control.hpp"
+#include "driver/row_check.hpp"
 #include "io/value_error.hpp"
 
 namespace ecm::driver {
@@ -527,9 +528,7 @@ class Runner {
       r.crackNormal = n;
       r.opening = scene_.effectiveSize * normalComponent(point_.strain - c * stress_, n);
     }
-    if (!r.strain.allFinite() || !r.stress.allFinite() || !std::isfinite(r.work) || !std::isfinite(r.dissipation))
-      throw NonFiniteRow{"increment " + std::to_string(inc) + " (segment " + std::to_string(k + 1) +
-                         "): the material update gave a stress or an energy that is not a number"};
+    if (!isAllNumbers(r)) throw NonFiniteRow{notANumberFailure(inc, k + 1)};
     run_.history.push_back(r);
     highest_ = std::max(highest_, principalStresses(stress_).first);
     if (observe_) observe_(r, inc, total_);

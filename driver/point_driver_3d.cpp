@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "driver/golden_maximum.hpp"
+#include "driver/row_check.hpp"
 
 namespace ecm::driver {
 
@@ -144,9 +145,8 @@ PointRun3 runPoint3D(const PointScene3& scene, const RowObserver3& observe) {
   const auto record = [&](HistoryRow3 row) {
     row.work = work;
     row.dissipation = dissipation;
-    if (!row.strain.allFinite() || !row.stress.allFinite() || !std::isfinite(row.work) || !std::isfinite(row.dissipation)) {
-      run.failure = "increment " + std::to_string(increment) + " (segment " + std::to_string(row.segment) +
-                    "): the material update gave a stress or an energy that is not a number";
+    if (!isAllNumbers(row)) {
+      run.failure = notANumberFailure(increment, row.segment);
       return false;
     }
     run.history.push_back(row);

@@ -132,7 +132,7 @@ std::string convert<std::string>(const YAML::Node& n, const std::string& file, i
   if (!n.IsScalar()) throw InputError(file, line, "key '" + key + "': expected a string, got " + describe(n));
   // Names go into summary.json and file names: only text (found by fuzz/fuzz_point_scene.cpp).
   if (const std::optional<std::size_t> at = firstInvalidUtf8(n.Scalar()))
-    throw InputError(file, line, "key '" + key + "': is not valid UTF-8 text (a stray byte at character " + std::to_string(*at + 1) + ")");
+    throw InputError(file, line, "key '" + key + "': is not valid UTF-8 text (a stray byte at byte " + std::to_string(*at + 1) + ")");
   return n.Scalar();
 }
 

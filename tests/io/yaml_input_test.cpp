@@ -103,7 +103,7 @@ TEST(YamlInput, AStringThatIsNotUtf8TextIsRefusedWithItsLine) {
   const YamlMap m = parseYaml("a: caf\xc3\xa9 \xe6\xb0\xb4\nb: band\x9c\x9cname\n", "t.yaml");
   EXPECT_EQ(m.get<std::string>("a"), "caf\xc3\xa9 \xe6\xb0\xb4");
   const InputError e = inputError([&] { m.get<std::string>("b"); });
-  expectAt(e, "t.yaml", 2, "key 'b': is not valid UTF-8 text (a stray byte at character 5)");
+  expectAt(e, "t.yaml", 2, "key 'b': is not valid UTF-8 text (a stray byte at byte 5)");
 }
 
 TEST(YamlInput, Utf8CheckFollowsRfc3629) {
