@@ -213,7 +213,10 @@ class Runner {
     double lambda = 0.0, dJump = 1e-4 * h;
     bool turned = false, peaked = false;
     Saved before = save(lambda);
+    int stalled = 0;  // consecutive tries whose jump step is at round-off (docs/model.md, "Snap-back on the path")
     for (int guard = 0; guard < 100000; ++guard) {
+      stalled = dJump < kStalledJump * h ? stalled + 1 : 0;
+      if (stalled > kStalledTries) return traceStalled(lambda);
       MaterialPoint trial = point_;
       o.normalJump = point_.band->normalJump() + dJump;
       const OpeningOutcome out = openingControlStep(*model, trial, o, settings_.tolerance);
@@ -310,6 +313,21 @@ class Runner {
       return true;
     }
     run_.failure = "snap-back: the stable branch was not reached";
+    return false;
+  }
+
+  // The trace of a snap-back stalls where the band's opening can no longer grow by more than
+  // round-off (kStalledJump of h) over kStalledTries tries in a row: a band fully open (D = 1)
+  // under a stress target it cannot carry, which no further step reaches.
+  static constexpr double kStalledJump = 1e-9;
+  static constexpr int kStalledTries = 200;
+  bool traceStalled(double lambda) {
+    std::ostringstream msg;
+    msg << "snap-back: the trace of the stable branch stalled at increment " << increment_ + 1 << " (normal jump "
+        << point_.band->normalJump() << " mm, damage " << point_.band->damage() << ", " << lambda
+        << " of the increment done): the band's opening no longer changes the state, and the increment's target is not reached";
+    run_.failure = msg.str();
+    run_.snapBack.stalled = true;
     return false;
   }
 

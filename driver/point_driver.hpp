@@ -67,6 +67,9 @@ struct SnapBackReport {
   double stressBefore = 0.0;   // first principal stress there (MPa)
   double stressAfter = 0.0;    // on the stable branch at the increment's target strain (if jumped)
   bool jumped = false;
+  // The trace stalled: the band fully open under a stress target it cannot carry, its opening no
+  // longer changing the state (docs/model.md, "Snap-back on the path"); the run then fails.
+  bool stalled = false;
 };
 
 struct PointRun {

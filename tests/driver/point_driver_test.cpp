@@ -87,6 +87,29 @@ path:
   EXPECT_LT(run.history.back().integrity, 1e-100);
 }
 
+TEST(PointDriver, ASnapBackTraceThatCannotReachItsTargetStallsAndSaysSo) {
+  // Found by fuzz/fuzz_point_scene.cpp: a shear stress of 5 MPa held while eps_xx grows by 0.12
+  // per increment. The band snaps back, opens fully (D = 1) and cannot carry the shear; no jump
+  // step but one at round-off converges, and the trace spent its 100 000 tries (39 s) before it
+  // failed. Now it stalls after 200 tries at round-off, with the band fully open and the
+  // increment's target not reached (docs/model.md, "Snap-back on the path").
+  const PointScene s = readPointScene(io::parseYaml(R"(
+name: stalled-trace
+material: {model: enriched, hypothesis: plane_stress, youngs_modulus: 71223, poisson_ratio: 0.15, tensile_strength: 3.5,
+           softening_modulus: 6, softening_exponent: 0.2, band_width: 0.1, second_band: orthogonal}
+effective_size: 21
+path:
+  segments:
+    - {eps_xx: 120131e-4, sig_yy: 0.0, sig_xy: 5.0, increments: 100}
+)", "stalled.yaml"));
+  const PointRun run = runPoint(s);
+  EXPECT_FALSE(run.completed);
+  EXPECT_TRUE(run.snapBack.detected);
+  EXPECT_TRUE(run.snapBack.stalled);
+  ASSERT_FALSE(run.history.empty());
+  EXPECT_LT(run.history.back().integrity, 1e-6);  // the band fully open where it stalled
+}
+
 TEST(PointDriver, ElasticPathsFollowHookesLaw) {
   // Closed forms of plane-stress Hooke's law: uniaxial stress, uniaxial strain, pure shear.
   const double e = 5e-5;
