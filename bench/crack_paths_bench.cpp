@@ -14,7 +14,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "mpm/explicit/solver.hpp"
+#include "mpm/explicit/explicit_solver.hpp"
 #include "mpm/scene/scene_yaml.hpp"
 
 namespace {
@@ -49,13 +49,13 @@ Scene beam(bool tracked) {
 void BM_BeamStep(benchmark::State& state) {
   const bool tracked = state.range(0) != 0;
   const bool growing = state.range(1) != 0;
-  Solver solver(beam(tracked), 1);
+  ExplicitSolver solver(beam(tracked), 1);
   if (growing)
     while (solver.time() < 9e-3) solver.advance();
   constexpr int kSteps = 500;
   for (auto _ : state) {
     state.PauseTiming();
-    Solver run = solver;  // each iteration times the same 500 steps
+    ExplicitSolver run = solver;  // each iteration times the same 500 steps
     state.ResumeTiming();
     for (int n = 0; n < kSteps; ++n) run.advance();
     state.counters["cracked"] = static_cast<double>(run.particles().bands.size());

@@ -10,7 +10,7 @@
 #include <string>
 #include <unistd.h>
 
-#include "mpm/explicit/solver.hpp"
+#include "mpm/explicit/explicit_solver.hpp"
 #include "mpm/output/vtu_writer.hpp"
 
 namespace {
@@ -48,7 +48,7 @@ Scene block(int cells, const MaterialParams& m, ShapeFunction shape) {
   return s;
 }
 
-void report(benchmark::State& state, const Solver& solver) {
+void report(benchmark::State& state, const ExplicitSolver& solver) {
   const double n = static_cast<double>(solver.particles().size());
   state.counters["particles"] = n;
   state.counters["particle_updates_per_s"] =
@@ -61,7 +61,7 @@ void report(benchmark::State& state, const Solver& solver) {
 // ~100k elastic particles vibrating freely (an initial velocity field).
 void BM_ElasticStep(benchmark::State& state) {
   const auto shape = static_cast<ShapeFunction>(state.range(1));
-  Solver solver(block(158, elastic(), shape), static_cast<int>(state.range(0)));
+  ExplicitSolver solver(block(158, elastic(), shape), static_cast<int>(state.range(0)));
   auto& p = solver.editParticles();
   for (std::size_t i = 0; i < p.size(); ++i)
     p.velocity[i] = Vec2(100.0 * std::sin(0.05 * p.position[i][1]), 50.0 * std::cos(0.03 * p.position[i][0]));
@@ -92,7 +92,7 @@ Scene stretchedBlock() {
 
 void BM_CrackedStep(benchmark::State& state) {
   const Scene s = stretchedBlock();
-  Solver solver(s, static_cast<int>(state.range(0)));
+  ExplicitSolver solver(s, static_cast<int>(state.range(0)));
   while (solver.particles().bands.size() < solver.particles().size()) solver.advance();
   for (auto _ : state) solver.advance();
   report(state, solver);
@@ -113,7 +113,7 @@ void BM_Phase(benchmark::State& state) {
   const bool cracked = state.range(1) != 0;
   const int threads = static_cast<int>(state.range(2));
   const Scene s = cracked ? stretchedBlock() : block(158, elastic(), ShapeFunction::Linear);
-  Solver solver(s, threads);
+  ExplicitSolver solver(s, threads);
   auto& p = solver.editParticles();
   if (cracked) {
     while (p.bands.size() < p.size()) solver.advance();

@@ -11,7 +11,7 @@
 #include <sys/resource.h>
 
 #include "mpm/scene/scene_yaml.hpp"
-#include "mpm/explicit/solver.hpp"
+#include "mpm/explicit/explicit_solver.hpp"
 
 namespace {
 
@@ -26,7 +26,7 @@ const Scene& twoDisks(int scheme) {
 
 // Bytes of the solver's arrays per particle: the particle fields, its slot in the scatter order
 // and the grid fields (no per-thread copy of the grid: mpm/explicit/scatter_order.hpp).
-double solverBytesPerParticle(const Solver& s) {
+double solverBytesPerParticle(const ExplicitSolver& s) {
   const double particles = static_cast<double>(s.particles().size());
   const GridFields& g = s.grid();
   const double nodes = static_cast<double>(g.mass.size());
@@ -41,7 +41,7 @@ void BM_TwoDisks(benchmark::State& state) {
   double particles = 0.0, bytes = 0.0, kinetic = 0.0, strain = 0.0;
   for (auto _ : state) {
     state.PauseTiming();
-    Solver solver(twoDisks(scheme), threads);
+    ExplicitSolver solver(twoDisks(scheme), threads);
     state.ResumeTiming();
     for (long n = 1; n <= steps; ++n) {
       solver.advance();

@@ -4,9 +4,9 @@
 
 #include <algorithm>
 
-#include "mpm/explicit/checkpoint.hpp"
+#include "mpm/explicit/explicit_checkpoint.hpp"
 #include "mpm/explicit/energy_check.hpp"
-#include "mpm/explicit/solver.hpp"
+#include "mpm/explicit/explicit_solver.hpp"
 #include "mpm/output/run_files.hpp"
 
 namespace ecm::mpm {
@@ -66,10 +66,10 @@ class ExplicitStepper final : public Stepper {
   RunBook& book() override { return book_; }
   void writeCheckpoint(const std::filesystem::path& path, std::uint64_t sceneHash) override {
     book_.nextOutput = nextOutput_;
-    mpm::writeCheckpoint(path, solver_, book_, sceneHash);
+    mpm::writeExplicitCheckpoint(path, solver_, book_, sceneHash);
   }
   void readCheckpoint(const std::filesystem::path& path, std::uint64_t sceneHash) override {
-    book_ = mpm::readCheckpoint(path, solver_, sceneHash);
+    book_ = mpm::readExplicitCheckpoint(path, solver_, sceneHash);
     nextOutput_ = book_.nextOutput;
   }
 
@@ -113,8 +113,8 @@ class ExplicitStepper final : public Stepper {
 
  private:
   const Scene& scene_;
-  Solver solver_;  // throws on a scene it cannot seed, before any output
-  RunBookkeeping book_;
+  ExplicitSolver solver_;  // throws on a scene it cannot seed, before any output
+  ExplicitBookkeeping book_;
   double nextOutput_;
   double initialEnergy_ = 0.0;  // kinetic and strain energy at step 0 (N mm): energy_check.hpp
 };

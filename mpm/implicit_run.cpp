@@ -6,8 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
-#include <stdexcept>
+#include <optional>
 
 #include "mpm/implicit/implicit_checkpoint.hpp"
 #include "mpm/implicit/implicit_solver.hpp"
@@ -17,38 +16,6 @@
 namespace ecm::mpm {
 
 namespace {
-
-// The scene's indirect control in node components: each term on its grid node (Scene::validate
-// checked that it is one). A node that no particle's shape function reaches carries no material:
-// its displacement stays 0 and a control on it would hold nothing (an opening that moves only on
-// the other nodes): refused, naming the term.
-IndirectControl indirectControl(const Scene& scene, const std::vector<std::uint8_t>& reached) {
-  const ImplicitSettings::Indirect& in = *scene.solver.implicit->indirect;
-  IndirectControl c;
-  for (const std::string& name : in.driven) {  // conditions and platens (validated: each is one of them)
-    if (const auto i = findCondition(scene.conditions, name)) {
-      c.driven.push_back(*i);
-      continue;
-    }
-    for (std::size_t p = 0; p < scene.platens.size(); ++p)
-      if (scene.platens[p].name == name) c.drivenPlatens.push_back(p);
-  }
-  c.reference = in.reference;
-  const Grid& g = scene.grid;
-  for (std::size_t k = 0; k < in.terms.size(); ++k) {
-    const ControlTerm& t = in.terms[k];
-    const Vec2 local = (t.at - g.origin).cwiseQuotient(g.cellSize);
-    const int i = static_cast<int>(std::lround(local[0])), j = static_cast<int>(std::lround(local[1]));
-    if (!reached[static_cast<std::size_t>(g.node(i, j))]) {
-      std::ostringstream msg;
-      msg << "solver.control.indirect.opening[" << k << "]: the node (" << t.at[0] << ", " << t.at[1]
-          << ") mm is reached by no particle (no material around it): its displacement would stay 0; name nodes of the body";
-      throw std::invalid_argument(msg.str());
-    }
-    c.terms.push_back({2 * g.node(i, j) + t.component, t.coefficient});
-  }
-  return c;
-}
 
 class ImplicitStepper final : public Stepper {
  public:
@@ -147,8 +114,8 @@ class ImplicitStepper final : public Stepper {
     j["krylov_iterations"] = book_.krylovIterations;
     j["linear_solve_s"] = book_.linearSolveSeconds;
     j["linear_solver"] = toString(settings_.linearSolver);
-    if (settings_.linearSolver == LinearSolverKind::Umfpack)
-      j["factor_copies"] = solver_.linearSolver().factorCopies();  // by runs, of this process's factorisations
+    if (const std::optional<long> copies = solver_.linearSolver().factorCopies())
+      j["factor_copies"] = *copies;  // by runs, of this process's factorisations (UMFPACK)
     if (const AmgStatistics* amg = solver_.linearSolver().amgStatistics())
       j["amg"] = {{"hierarchies", amg->setups},         {"solves", amg->solves},
                   {"gmres_iterations", amg->iterations}, {"failed_solves", amg->failedSolves},
@@ -171,29 +138,12 @@ class ImplicitStepper final : public Stepper {
 
  private:
   double spacing() const { return scene_.outputInterval * scene_.snapshotEvery; }
-  // Indirect control on a gauge: its reading's increment over a step is linear in the nodes'
-  // increments through the shape functions of its particles at the step's start,
-  // d reading = sum_i N_i(x_to) du_i - sum_i N_i(x_at) du_i: the control's terms, made anew
-  // before every step as the particles move.
+  // Indirect control on a gauge (controlOnGauge): its terms made anew before every step.
   void gaugeControl() {
     const auto g = static_cast<std::size_t>(std::find_if(scene_.gauges.begin(), scene_.gauges.end(), [&](const Gauge& x) {
                                               return x.name == settings_.indirect->gauge;
                                             }) - scene_.gauges.begin());
-    const Gauge& gauge = scene_.gauges[g];
-    const GaugePoints& points = gaugePoints_[g];
-    const StepSetup& setup = solver_.setup();
-    const Grid& grid = scene_.grid;
-    const int support = supportSize(scene_.solver.shapeFunction);
-    control_.terms.clear();
-    const auto add = [&](std::size_t particle, double sign) {
-      Stencil s;
-      if (!computeStencil(scene_.solver.shapeFunction, grid, setup.halfWidth, solver_.particles().position[particle], s)) return;
-      for (int j = 0; j < support; ++j)
-        for (int k = 0; k < support; ++k)
-          if (const double w = s.wx[k] * s.wy[j]; w != 0.0) control_.terms.push_back({2 * (s.base + j * grid.nodesX() + k) + gauge.component, sign * w});
-    };
-    if (gauge.to) add(points.to, 1.0);
-    add(points.at, gauge.to ? -1.0 : 1.0);
+    controlOnGauge(control_, scene_.gauges[g], gaugePoints_[g], solver_.setup(), solver_.particles());
   }
   long cracked() const {
     long n = 0;

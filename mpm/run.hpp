@@ -5,55 +5,14 @@
 // A failure still leaves everything written so far readable, and a summary saying why.
 // Both solvers run in the one run loop (mpm/run_loop.hpp). Checkpoints are written as the scene asks and when the run is asked to
 // stop; a restart continues the same output folder (history.csv, snapshots) from the checkpoint.
-#include <atomic>
-#include <cstdint>
-#include <filesystem>
-#include <functional>
-#include <memory>
-#include <string>
-#include <vector>
-
+#include "mpm/run_options.hpp"
 #include "mpm/scene/scene.hpp"
 
 namespace ecm::mpm {
 
-struct RunOptions {
-  std::filesystem::path outputDir;
-  int threads = 0;        // 0: OpenMP default
-  bool snapshots = true;  // VTU particle snapshots
-  bool plot = true;       // load-displacement PNG through gnuplot
-  bool progress = true;   // progress on stderr
-  // Checkpoint and restart.
-  bool restart = false;          // continue the run of outputDir from its checkpoint.bin
-  std::uint64_t sceneHash = 0;   // FNV-1a 64 of the scene file's bytes (0: a scene built in code);
-                                 // a restart refuses a checkpoint written with another one
-  long maxSteps = 0;             // > 0: stop with a checkpoint once the step count (from t = 0) reaches it
-  const std::atomic<bool>* stop = nullptr;  // once set (a signal handler): stop with a checkpoint after the step
-  std::string resumeCommand;     // how to resume, for summary.json (main: "ecm-mpm SCENE --restart DIR")
-  // Called after every history row is written (with the time reached, s, and the step count);
-  // returning false asks the run to stop with a checkpoint, as `stop` does (the Python module's
-  // progress callback).
-  std::function<bool(double time, long step)> onRow;
-};
-
-struct RunResult {
-  bool completed = false;
-  bool stopped = false;    // stopped on request (stop flag, maxSteps) after writing a checkpoint
-  std::string error;       // why the run failed (a simulation failure or a file that could not be written)
-  long steps = 0;          // the step count reached (from t = 0)
-  long restartedFrom = -1; // the step of the checkpoint a restart continued from
-  std::size_t particles = 0;
-  double peakLoad = 0.0;   // N: the largest reaction of a driven condition (or applied load)
-  bool endedByStopWhen = false;  // completed at the scene's stop_when, before end_time
-  double stopLoad = 0.0;         // N: the watched reaction at that row
-  double wallTime = 0.0;   // s, of this run (a restart counts from its own start)
-  long checkpoints = 0;    // written by this run
-  std::filesystem::path checkpoint;  // the checkpoint left in the folder (empty: none)
-};
-
 // Runs the scene to its end time (or its stop_when). Input errors (invalid scene) throw std::invalid_argument and
 // an output folder that cannot be written io::OutputError, before anything is written; a
-// checkpoint that a restart cannot use throws CheckpointError (mpm/explicit/checkpoint.hpp), before
+// checkpoint that a restart cannot use throws CheckpointError (mpm/output/checkpoint_codec.hpp), before
 // anything is changed. A failure during the run (simulation, or a file that cannot be written)
 // is reported in the result (and in summary.json when it can be written) after the outputs have
 // been flushed. A completed run removes its checkpoint; a stopped or failed one keeps the last.

@@ -12,7 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "mpm/output/checkpoint_codec.hpp"
-#include "mpm/run.hpp"
+#include "mpm/run_options.hpp"
+#include "mpm/scene/scene.hpp"
 #include "mpm/setup/crack_paths.hpp"
 #include "mpm/setup/step_setup.hpp"
 

@@ -7,7 +7,7 @@
 
 namespace ecm::mpm {
 
-void checkDampingWork(const Solver& solver, double initial) {
+void checkDampingWork(const ExplicitSolver& solver, double initial) {
   const RunTotals& e = solver.state().totals;
   if (!dampingOutrunsInput(e, initial)) return;
   const Particles& p = solver.kinematics();

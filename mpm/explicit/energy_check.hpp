@@ -11,7 +11,7 @@
 #include <optional>
 #include <string>
 
-#include "mpm/explicit/solver.hpp"
+#include "mpm/explicit/explicit_solver.hpp"
 
 namespace ecm::mpm {
 
@@ -27,6 +27,6 @@ inline bool dampingOutrunsInput(const RunTotals& t, double initial) {
 
 // Throws SimulationError (EnergyImbalance) where dampingOutrunsInput, naming the step, the time,
 // both energies and the fastest particle.
-void checkDampingWork(const Solver& solver, double initial);
+void checkDampingWork(const ExplicitSolver& solver, double initial);
 
 }  // namespace ecm::mpm

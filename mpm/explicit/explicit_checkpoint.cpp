@@ -1,4 +1,4 @@
-#include "mpm/explicit/checkpoint.hpp"
+#include "mpm/explicit/explicit_checkpoint.hpp"
 
 #include <cstring>
 #include <fstream>
@@ -17,12 +17,12 @@ using checkpoint::Encoder;
 
 }  // namespace
 
-void writeCheckpoint(const std::filesystem::path& path, const Solver& solver, const RunBookkeeping& run,
+void writeExplicitCheckpoint(const std::filesystem::path& path, const ExplicitSolver& solver, const ExplicitBookkeeping& run,
                      std::uint64_t sceneHash) {
   Encoder e;
   checkpoint::putHead(e, sceneHash, solver.threads());
 
-  const Solver::StepState s = solver.stepState();
+  const ExplicitSolver::StepState s = solver.stepState();
   e.put(s.time);
   e.put(s.timeStep);
   e.put(static_cast<std::int64_t>(s.step));
@@ -57,16 +57,16 @@ void writeCheckpoint(const std::filesystem::path& path, const Solver& solver, co
   checkpoint::writeSealed(path, kMagic, kCheckpointVersion, e.bytes());
 }
 
-RunBookkeeping readCheckpoint(const std::filesystem::path& path, Solver& solver, std::uint64_t sceneHash) {
+ExplicitBookkeeping readExplicitCheckpoint(const std::filesystem::path& path, ExplicitSolver& solver, std::uint64_t sceneHash) {
   const std::string where = "checkpoint '" + path.string() + "'";
   auto refuse = [&](const std::string& why) -> void { throw CheckpointError(where + ": " + why); };
   std::string file;
   const std::string_view payload = checkpoint::readSealed(path, kMagic, kCheckpointVersion, "an ecm-mpm checkpoint", file);
   Decoder d(payload, where);
-  RunBookkeeping run;
+  ExplicitBookkeeping run;
   run.threads = checkpoint::getHead(d, sceneHash, where);
 
-  Solver::StepState s;
+  ExplicitSolver::StepState s;
   s.time = d.get<double>();
   s.timeStep = d.get<double>();
   s.step = static_cast<long>(d.get<std::int64_t>());

@@ -35,7 +35,7 @@
 #include <vector>
 
 #include "io/csv_writer.hpp"
-#include "mpm/explicit/solver.hpp"
+#include "mpm/explicit/explicit_solver.hpp"
 #include "mpm/output/checkpoint_codec.hpp"
 
 namespace ecm::mpm {
@@ -46,17 +46,17 @@ inline constexpr std::uint32_t kCheckpointVersion = 8;
 
 // What an explicit run carries besides the solver: the run loop's book and the time of the next
 // output row.
-struct RunBookkeeping : RunBook {
+struct ExplicitBookkeeping : RunBook {
   double nextOutput = 0.0;  // s
 };
 
 // Throws io::OutputError naming the file when it cannot be written (the old one stays).
-void writeCheckpoint(const std::filesystem::path& path, const Solver& solver, const RunBookkeeping& run,
+void writeExplicitCheckpoint(const std::filesystem::path& path, const ExplicitSolver& solver, const ExplicitBookkeeping& run,
                      std::uint64_t sceneHash);
 
 // Restores `solver` (freshly built from the same scene) from the checkpoint and returns the
 // run's bookkeeping. Throws CheckpointError, leaving the solver unusable, when the file is
 // refused; `sceneHash` must match the one it was written with.
-RunBookkeeping readCheckpoint(const std::filesystem::path& path, Solver& solver, std::uint64_t sceneHash);
+ExplicitBookkeeping readExplicitCheckpoint(const std::filesystem::path& path, ExplicitSolver& solver, std::uint64_t sceneHash);
 
 }  // namespace ecm::mpm

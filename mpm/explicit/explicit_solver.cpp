@@ -1,4 +1,4 @@
-#include "mpm/explicit/solver.hpp"
+#include "mpm/explicit/explicit_solver.hpp"
 
 #include <algorithm>
 #include <stdexcept>
@@ -8,7 +8,7 @@
 
 namespace ecm::mpm {
 
-Solver::Solver(Scene scene, int threads) {
+ExplicitSolver::ExplicitSolver(Scene scene, int threads) {
   Particles particles = seedParticles(scene);
   setup_ = makeStepSetup(std::move(scene), particles.size(), threads, kParticlesPerThread);
   state_ = initialState(setup_, std::move(particles));
@@ -28,13 +28,13 @@ const char* toString(StepPhase p) {
   return "?";
 }
 
-void Solver::storeIntactStresses() const {
+void ExplicitSolver::storeIntactStresses() const {
   if (!intactStressesUnstored_) return;
   storeStressesOfIntactPoints(setup_, const_cast<Particles&>(state_.particles));
   intactStressesUnstored_ = false;
 }
 
-Energies Solver::energies() const {
+Energies ExplicitSolver::energies() const {
   const Particles& p = particles();
   const Vec2 e = orderedSum(setup_.threads, static_cast<long>(p.size()), Vec2(Vec2::Zero()), [&](long i) {
     const auto k = static_cast<std::size_t>(i);
@@ -44,7 +44,7 @@ Energies Solver::energies() const {
   return {e[0], e[1], t.externalWork, t.dissipated, t.damping};  // kinetic, strain
 }
 
-Solver::StepState Solver::stepState() const {
+ExplicitSolver::StepState ExplicitSolver::stepState() const {
   const Clock& c0 = state_.clock;
   const RunTotals& t = state_.totals;
   StepState s{c0.time, c0.dt, c0.step, t.externalWork, t.dissipated, t.damping, t.substepped, t.released, t.massScaled,
@@ -58,7 +58,7 @@ Solver::StepState Solver::stepState() const {
   return s;
 }
 
-void Solver::restoreStepState(const StepState& s) {
+void ExplicitSolver::restoreStepState(const StepState& s) {
   std::vector<ConditionState>& conditions = state_.conditions;
   std::vector<LoadState>& loads = state_.loads;
   if (s.reactions.size() != conditions.size() || s.conditionDisplacements.size() != conditions.size() ||
@@ -81,6 +81,6 @@ void Solver::restoreStepState(const StepState& s) {
   rebuildGridNextStep();
 }
 
-double Solver::damage(std::size_t i) const { return state_.particles.damage(i); }
+double ExplicitSolver::damage(std::size_t i) const { return state_.particles.damage(i); }
 
 }  // namespace ecm::mpm

@@ -10,7 +10,7 @@
 
 namespace ecm::mpm {
 
-// The phases a step's wall time is booked to (Solver::phaseSeconds, summary.json "phase_seconds").
+// The phases a step's wall time is booked to (ExplicitSolver::phaseSeconds, summary.json "phase_seconds").
 enum class StepPhase {
   P2G,              // particle-to-grid
   Grid,             // loads, the grid update, velocity conditions
@@ -24,12 +24,12 @@ enum class StepPhase {
 inline constexpr std::size_t kStepPhases = 8;
 const char* toString(StepPhase p);
 
-class Solver {
+class ExplicitSolver {
  public:
   // Seeds the particles of a validated scene (Scene::validate; readScene returns one). threads > 0: exactly that many; 0: automatic,
   // the OpenMP default but at most one thread per kParticlesPerThread particles (for small
   // scenes fork/join and barriers cost more than they save).
-  explicit Solver(Scene scene, int threads = 0);
+  explicit ExplicitSolver(Scene scene, int threads = 0);
   static constexpr std::size_t kParticlesPerThread = 4096;
 
   // One explicit step (mpm/explicit/step.cpp): the phases of the scene's update scheme in order; USL, the
@@ -89,7 +89,7 @@ class Solver {
   void rebuildGridNextStep() { fused_.gridHoldsState = false; }
 
   // What carries over from one step to the next besides the particles (for checkpoints,
-  // mpm/explicit/checkpoint.hpp). The grid and the particles' stencils are rebuilt by every step.
+  // mpm/explicit/explicit_checkpoint.hpp). The grid and the particles' stencils are rebuilt by every step.
   struct StepState {
     double time = 0.0, timeStep = 0.0;
     long step = 0;
@@ -112,7 +112,7 @@ class Solver {
   std::vector<std::vector<std::uint32_t>> pendingPerThread_;
 
   // The fused pass has left intact points' stresses unstored since the last storeIntactStresses().
-  // Set by step.cpp only; a const accessor stores them (the Solver is never a const object once
+  // Set by step.cpp only; a const accessor stores them (the ExplicitSolver is never a const object once
   // it has stepped, so the stores below write to a mutable object).
   mutable bool intactStressesUnstored_ = false;
   void storeIntactStresses() const;

@@ -1,6 +1,6 @@
 #pragma once
 // The plain state an explicit MPM step works on (the phases of mpm/explicit/phases.hpp read and
-// write it; mpm/explicit/solver.hpp owns one of each). Plain structs, no invariants beyond their sizes.
+// write it; mpm/explicit/explicit_solver.hpp owns one of each). Plain structs, no invariants beyond their sizes.
 #include <cstdint>
 #include <utility>
 #include <vector>

@@ -23,18 +23,18 @@
 // DEN; tests/mpm/den_test.cpp).
 #include <omp.h>
 
-#include "mpm/explicit/solver.hpp"
+#include "mpm/explicit/explicit_solver.hpp"
 
 namespace ecm::mpm {
 
 template <class Phase>
-void Solver::timed(StepPhase phase, Phase&& run) {
+void ExplicitSolver::timed(StepPhase phase, Phase&& run) {
   const double start = omp_get_wtime();
   run();
   phaseSeconds_[static_cast<std::size_t>(phase)] += omp_get_wtime() - start;
 }
 
-void Solver::advance() {
+void ExplicitSolver::advance() {
   const StepSetup& s = setup_;
   MpmState& st = state_;
   Particles& p = st.particles;
@@ -67,13 +67,13 @@ void Solver::advance() {
   ++st.clock.step;
 }
 
-void Solver::advanceByPhases() {
+void ExplicitSolver::advanceByPhases() {
   phases();
   state_.clock.time += state_.clock.dt;
   ++state_.clock.step;
 }
 
-void Solver::phases() {
+void ExplicitSolver::phases() {
   const StepSetup& s = setup_;
   MpmState& st = state_;
   Particles& p = st.particles;

@@ -1,6 +1,6 @@
 #pragma once
 // Checkpoints of implicit_static runs (docs/implicit.md): DIR/checkpoint.bin, like an explicit
-// run's (mpm/explicit/checkpoint.hpp) but with the implicit solver's state, so a restarted run continues
+// run's (mpm/explicit/explicit_checkpoint.hpp) but with the implicit solver's state, so a restarted run continues
 // bitwise as the uninterrupted one, on any thread count. Written atomically and durably.
 //
 // Format (version 6; numbers in the machine's byte order):
@@ -15,7 +15,7 @@
 //                node tie i32 node, sources, source 4, f64 coefficient 4 (mpm/implicit/node_ties.hpp) |
 //            indirect control: u64 i, f64 the last step's increments i | f64 last load factor increment,
 //              last opening |
-//            platens, particles and crack paths (as mpm/explicit/checkpoint.hpp) |
+//            platens, particles and crack paths (as mpm/explicit/explicit_checkpoint.hpp) |
 //            run: f64 progress, next snapshot, peak load, stop_when peak, u64 q, f64 3 of each platen, linear-solve seconds | i64 iterations,
 //              halvings, releases, factorisations, most iterations in a step, relaxed steps, Krylov iterations |
 //              u64 history.csv bytes, FNV-1a 64, rows | u64 snapshots, f64 their times

@@ -2,8 +2,12 @@
 // Implicit quasi-static MPM (docs/implicit.md): the scene's time is a pseudo-time that sets the
 // loads and the prescribed displacements; each load step solves equilibrium on the grid by
 // Newton's method on the nodal displacement increments with the assembled consistent tangent
-// (mpm/implicit/implicit_system.hpp), a backtracking line search and, when it does not converge, the step
-// cut in half. The particles move and their states are committed at the end of a converged step.
+// (mpm/implicit/implicit_system.hpp) and, when it does not converge, the step cut in half. The
+// particles move and their states are committed at the end of a converged step.
+// Where each part is: the step's prescribed components, platens, ties and loads in
+// step_preparation.cpp; Newton in newton.cpp over the control's problem (displacement_control.cpp,
+// indirect_control.cpp); the adaptive pieces and halvings in load_stepping.cpp; the commit (the
+// particles moved, reactions, works) in step_commit.cpp.
 //
 // Prescribed components over a step [t, t + dt]: Fixed 0; Displacement u(t + dt) - u(t);
 // Velocity dt v(t + dt) (a rate in pseudo-time); an affine field dt scale(t + dt) G (x - o).
@@ -11,37 +15,13 @@
 #include <array>
 #include <vector>
 
+#include "mpm/implicit/attempt.hpp"
 #include "mpm/implicit/implicit_system.hpp"
-#include "mpm/implicit/linear_solver.hpp"
+#include "mpm/implicit/indirect_control.hpp"
+#include "mpm/implicit/kept_factorization.hpp"
 #include "mpm/implicit/unknown_reduction.hpp"
 
 namespace ecm::mpm {
-
-// Indirect displacement control (docs/implicit.md): the driven conditions' prescribed components
-// move by lambda times `reference` (mm per unit load factor), lambda an unknown of each step, and
-// the step is set by the growth of a combination of node displacements instead:
-// tau = sum_k c_k u_k over node components k = 2 n + d (an opening across a crack, a crack mouth).
-// The grid is reset every step, so the control is on the step's increments: d tau = sum c_k du_k.
-struct IndirectControl {
-  std::vector<std::size_t> driven;                     // indices of scene conditions
-  std::vector<std::size_t> drivenPlatens;              // indices of scene platens (their displacement-driven x, y)
-  Vec2 reference = Vec2(0.0, 1.0);                     // mm per unit load factor, on their non-fixed components
-  std::vector<std::pair<std::int32_t, double>> terms;  // (node component, coefficient)
-};
-
-struct ImplicitStepReport {
-  double size = 0.0;        // the pseudo-time (or, under indirect control, the d tau) advanced
-  double onsetOvershoot = 0.0;  // the most a point passed its onset by in the step (of its strength)
-  int iterations = 0;       // Newton iterations of the converged attempt (all attempts in `total`)
-  int totalIterations = 0;
-  int cuts = 0;             // halvings needed
-  int factorizations = 0;   // of the tangent, in all attempts
-  double residual = 0.0;    // relative, at convergence
-  long released = 0;        // snap-backs released at the material level in the step
-  int relaxed = 0;          // 1: kept with a residual between tolerance and acceptTolerance
-  double linearSolveSeconds = 0.0;
-  long krylovIterations = 0;  // GMRES vectors on the kept factorisation (ImplicitSettings::krylovIterations)
-};
 
 class ImplicitSolver {
  public:
@@ -61,12 +41,13 @@ class ImplicitSolver {
   // again factorising at every iteration, then halved up to maxHalvings times; the last try has 4
   // times the iterations. A material snap-back follows the scene's snap_back: release (the band
   // fails onto its stable branch where the converged state asks for it, counted, no halving) or
-  // stop (one halving; if it persists, a SimulationError of kind SnapBack naming the point).
+  // stop (one halving; if it persists, a SimulationError of kind MaterialFailure, status SnapBack,
+  // naming the point).
   // Throws SimulationError as step() does.
   ImplicitStepReport advance(double largest, double remaining);
   ImplicitStepReport advance(const IndirectControl& control, double largest, double remaining);
   double loadFactor() const { return lambda_; }
-  const LinearSolver& linearSolver() const { return lu_; }
+  const LinearSolver& linearSolver() const { return factors_.linearSolver(); }
   // The tangent over the unknowns of a step of dt from here, at du = 0 (for benchmarks of the
   // linear solvers); empty if a particle left the grid. components: which displacement
   // component (0 x, 1 y) each unknown is, as AmgSolver::setComponents takes it.
@@ -117,11 +98,10 @@ class ImplicitSolver {
   Vec2 displacement(std::size_t i) const { return particles_.displacement(i); }
 
  private:
-  struct Attempt;
   // The step's prescribed components, geometry and loads (false: a particle left the grid).
   bool prepare(double dt, const IndirectControl* control, Attempt& a);
-  bool attempt(double dt, Attempt& a);  // Newton over [time_, time_ + dt]; true when converged
-  bool attemptIndirect(const IndirectControl& control, double dTau, Attempt& a);
+  // Newton over the piece (of pseudo-time dt, or of opening under `control`); true when converged.
+  bool solvePiece(const IndirectControl* control, double piece, Attempt& a);
   ImplicitStepReport advance(const IndirectControl* control, double largest, double remaining);
   ImplicitStepReport stepInPieces(const IndirectControl* control, double size);
   void commit(const Attempt& a, double dt);
@@ -140,24 +120,7 @@ class ImplicitSolver {
   std::vector<LoadState> loads_;
   std::vector<PlatenState> platens_;
   RunTotals totals_;
-  // Factorises K over the current unknowns into lu_ (false: singular), timing it in `a`.
-  bool factorize(const Eigen::SparseMatrix<double>& k, Attempt& a);
-  Eigen::VectorXd solve(const Eigen::VectorXd& b, Attempt& a);
-  // Indirect control's border of the step's system: [K, ku; c, cPrescribed] [d; dl] = [r; g], and
-  // y = -K0^-1 ku on the kept factorisation K0.
-  struct Border {
-    const Eigen::VectorXd& ku;
-    const Eigen::VectorXd& c;
-    double cPrescribed;
-    const Eigen::VectorXd& y;
-    double g;
-  };
-  bool krylovOn() const;
-  bool krylovStep(const Eigen::SparseMatrix<double>& k, const Border* border, const Eigen::VectorXd& r, Attempt& a,
-                  Eigen::VectorXd& d, double* dl);
-
-  LinearSolver lu_;
-  long luPattern_ = -1;    // factorKey() of the factorised tangent (-1: none)
+  KeptFactorization factors_;
   // The unknowns a factorisation is of: the geometry's pattern, which platen degrees of freedom
   // are prescribed (a platen free until some time changes them without a new pattern), and which
   // nodes are tied (mpm/implicit/node_ties.hpp): a change of either is a new reduction layout.
@@ -165,8 +128,6 @@ class ImplicitSolver {
   std::vector<NodeTie> tieLayout_;
   long reductionLayouts_ = 0;
   long factorKey() const { return geometry_.patternBuilds + (reductionLayouts_ << 32); }
-  Eigen::SparseMatrix<double> factored_;  // that tangent (a checkpoint stores it)
-  bool factoredReduced_ = false;          // of the unknowns of platenLayout_ and tieLayout_
   CrackPaths crackPaths_;  // where enriched points may open bands (docs/model.md, "Crack paths")
   StepGeometry geometry_;  // of the committed state after `geometryStep_` steps (-1: none)
   long geometryStep_ = -1;
@@ -175,10 +136,7 @@ class ImplicitSolver {
   double lambda_ = 0.0;  // the load factor of indirect control
   double nextPiece_ = 0.0;    // the adaptive step of pseudo-time (0: the largest)
   double nextOpening_ = 0.0;  // the adaptive step of indirect control's opening (mm; 0: the largest)
-  // Indirect control: the last step's increments per node component, of the load factor and of
-  // the opening (0: none yet); the next step's Newton starts from them, scaled.
-  Eigen::VectorXd lastIncrement_;
-  double lastLoadFactorIncrement_ = 0.0, lastOpening_ = 0.0;
+  LastIncrement lastIncrement_;  // indirect control's last step (its Newton starts the next)
   long steps_ = 0;
 };
 

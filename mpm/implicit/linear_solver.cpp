@@ -1,220 +1,95 @@
+// The linear solver of the implicit steps (mpm/implicit/linear_solver.hpp): the facade, the kind
+// chosen once (makeLinearSolverBackend), and the two small backends, Eigen's SparseLU and the
+// AMG solver (UMFPACK's is mpm/implicit/umfpack_solver.cpp).
 #include "mpm/implicit/linear_solver.hpp"
 
-#include <algorithm>
-#include <array>
-#include <optional>
+#include <Eigen/SparseLU>
 
-#include "mpm/implicit/factor_runs.hpp"
-#ifdef ECM_HAVE_UMFPACK
-#include "mpm/implicit/umfpack_library.hpp"
-#endif
+#include "mpm/implicit/linear_solver_backend.hpp"
 
 namespace ecm::mpm {
 
 namespace {
 
-// K's pattern with every value 1: the analysis (ordering, strategy) then depends on the pattern
-// only, not on which K of that pattern came first, so a restarted run factorises as the
-// uninterrupted one did.
-Eigen::SparseMatrix<double> ones(const Eigen::SparseMatrix<double>& k) {
-  Eigen::SparseMatrix<double> m = k;
-  std::fill(m.valuePtr(), m.valuePtr() + m.nonZeros(), 1.0);
-  return m;
-}
+class SparseLuBackend final : public LinearSolverBackend {
+ public:
+  bool factorize(const Eigen::SparseMatrix<double>& k) override {
+    if (!analysed_) lu_.analyzePattern(patternOnes(k)), analysed_ = true;
+    lu_.factorize(k);
+    return lu_.info() == Eigen::Success;
+  }
+  void forgetPattern() override { analysed_ = false; }
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) override { return lu_.solve(b); }
 
-}  // namespace
-
-#ifdef ECM_HAVE_UMFPACK
-struct UmfpackFactors {
-  const UmfpackLibrary& lib = umfpackLibrary();
-  std::array<double, UMFPACK_CONTROL> control{};
-  std::array<double, UMFPACK_INFO> info{};
-  void* symbolic = nullptr;
-  void* numeric = nullptr;
-  Eigen::SparseMatrix<double> k;  // the factorised matrix (compressed), which the solves pass on
-
-  UmfpackFactors() {
-    lib.defaults(control.data());
-    // The symmetric strategy (AMD on K + K^T, diagonal pivots preferred): K is structurally
-    // symmetric and nearly so in value. No iterative refinement: Newton corrects the solve.
-    // Measured in bench/implicit_bench.cpp (docs/implicit.md).
-    control[UMFPACK_STRATEGY] = UMFPACK_STRATEGY_SYMMETRIC;
-    control[UMFPACK_IRSTEP] = 0;
-  }
-  ~UmfpackFactors() {
-    if (numeric) lib.freeNumeric(&numeric);
-    if (symbolic) lib.freeSymbolic(&symbolic);
-  }
-  UmfpackFactors(const UmfpackFactors&) = delete;
-  UmfpackFactors& operator=(const UmfpackFactors&) = delete;
-
-  bool analyse(const Eigen::SparseMatrix<double>& pattern) {
-    split.reset();
-    if (numeric) lib.freeNumeric(&numeric);
-    if (symbolic) lib.freeSymbolic(&symbolic);
-    Eigen::SparseMatrix<double> m = ones(pattern);
-    m.makeCompressed();
-    return lib.symbolic(static_cast<int>(m.rows()), static_cast<int>(m.cols()), m.outerIndexPtr(), m.innerIndexPtr(),
-                        m.valuePtr(), &symbolic, control.data(), info.data()) == UMFPACK_OK;
-  }
-  bool factorise(const Eigen::SparseMatrix<double>& matrix) {
-    if (numeric) lib.freeNumeric(&numeric);
-    runs.reset();
-    solves = 0;
-    copyTried = false;
-    k = matrix;
-    k.makeCompressed();
-    return lib.numeric(k.outerIndexPtr(), k.innerIndexPtr(), k.valuePtr(), symbolic, &numeric, control.data(),
-                       info.data()) == UMFPACK_OK;
-  }
-  Eigen::VectorXd umfpackSolve(const Eigen::VectorXd& b) {
-    Eigen::VectorXd x(b.size());
-    lib.solve(UMFPACK_A, k.outerIndexPtr(), k.innerIndexPtr(), k.valuePtr(), x.data(), b.data(), numeric,
-              control.data(), info.data());
-    return x;
-  }
-
-  // The factors copied by runs (mpm/implicit/factor_runs.hpp), made at the copyAfter-th solve
-  // with a factorisation (docs/implicit.md, "The kept factors by runs"); the solves before it are
-  // UMFPACK's own. The default, the first, keeps restarts bitwise: a restarted run factorises the
-  // saved tangent again, and its copy is the one the uninterrupted run made.
-  std::unique_ptr<FactorRuns> runs;
-  std::optional<TwoWaySplit> split;  // the last copy's, while the analysis stands
-  int solves = 0;
-  bool copyTried = false;  // of this factorisation (a copy that failed is not tried again)
-  std::vector<double> work;
-  long copies = 0;
-
-  Eigen::VectorXd solve(const Eigen::VectorXd& b, int copyAfter, int threads) {
-    if (!copyTried && copyAfter > 0 && ++solves >= copyAfter) copyTried = true, runs = copy(threads);
-    if (!runs) return umfpackSolve(b);
-    Eigen::VectorXd x;
-    solveByRuns(*runs, b, x, work, threads);
-    return x;
-  }
-
-  // Whether every line (a row of L, a column of U) ends on its diagonal, as runsOf expects.
-  static bool endsOnDiagonal(const std::vector<int>& pointers, const std::vector<int>& indices) {
-    for (std::size_t i = 0; i + 1 < pointers.size(); ++i)
-      if (pointers[i + 1] <= pointers[i] || indices[static_cast<std::size_t>(pointers[i + 1] - 1)] != static_cast<int>(i)) return false;
-    return true;
-  }
-  // L by rows and U by columns, each triangle on a thread of its own where there are two (UMFPACK
-  // only reads its numeric object; each call fills arrays of its own), else one after the other
-  // (those arrays are the copy's largest transient). Null where UMFPACK refuses, or a line does
-  // not end on its diagonal.
-  std::unique_ptr<FactorRuns> copy(int threads) {
-    int lnz = 0, unz = 0, rows = 0, columns = 0, diagonalEntries = 0;
-    if (lib.getLunz(&lnz, &unz, &rows, &columns, &diagonalEntries, numeric) != UMFPACK_OK || rows != columns)
-      return nullptr;
-    auto f = std::make_unique<FactorRuns>();
-    const auto n = static_cast<std::size_t>(rows);
-    f->n = rows;
-    f->rowOfPivot.resize(n);
-    f->columnOfPivot.resize(n);
-    f->rowScale.resize(n);
-    f->diagonal.resize(n);
-    int reciprocal = 0;
-    bool copied[2] = {false, false};
-    const auto triangle = [&](int which) {
-      const std::size_t entries = static_cast<std::size_t>(which == 0 ? lnz : unz);
-      std::vector<int> pointers(n + 1), indices(entries);
-      std::vector<double> values(entries);
-      const int status =
-          which == 0 ? lib.getNumeric(pointers.data(), indices.data(), values.data(), nullptr, nullptr, nullptr,
-                                      f->rowOfPivot.data(), f->columnOfPivot.data(), f->diagonal.data(), &reciprocal,
-                                      f->rowScale.data(), numeric)
-                     : lib.getNumeric(nullptr, nullptr, nullptr, pointers.data(), indices.data(), values.data(), nullptr,
-                                      nullptr, nullptr, nullptr, nullptr, numeric);
-      if (status != UMFPACK_OK || !endsOnDiagonal(pointers, indices)) return;
-      (which == 0 ? f->lower : f->upper) = runsOf(rows, pointers.data(), indices.data(), values.data(), true);
-      copied[which] = true;
-    };
-#pragma omp parallel for num_threads(std::min(threads, 2)) schedule(static, 1)
-    for (int which = 0; which < 2; ++which) triangle(which);
-    if (!copied[0] || !copied[1]) return nullptr;
-    if (!reciprocal)
-      for (double& s : f->rowScale) s = 1.0 / s;  // UMFPACK divides row i by rowScale[i]
-    if (threads >= 2) {  // (one thread has no use for the split)
-      f->split = splitOf(*f, split ? &*split : nullptr);
-      split = f->split;
-    }
-    ++copies;
-    return f;
-  }
+ private:
+  bool analysed_ = false;
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
 };
-#else
-struct UmfpackFactors {};
-#endif
 
-LinearSolver::LinearSolver(LinearSolverKind kind) : kind_(kind) {}
-LinearSolver::~LinearSolver() = default;
-
-void LinearSolver::forgetPattern() {
-  analysed_ = false;
 #ifdef ECM_HAVE_HYPRE
-  if (amg_) amg_->forget();
-#endif
-}
-
-const AmgStatistics* LinearSolver::amgStatistics() const {
-#ifdef ECM_HAVE_HYPRE
-  if (amg_) return &amg_->statistics();
-#endif
-  return nullptr;
-}
-
-void LinearSolver::setComponents([[maybe_unused]] std::vector<int> components) {
-#ifdef ECM_HAVE_HYPRE
-  if (kind_ == LinearSolverKind::Amg) {
-    if (!amg_) amg_ = std::make_unique<AmgSolver>(), amg_->tolerance = iterativeTolerance_;
-    amg_->setComponents(std::move(components));
-  }
-#endif
-}
-
-bool LinearSolver::factorize(const Eigen::SparseMatrix<double>& k) {
-#ifdef ECM_HAVE_HYPRE
-  if (kind_ == LinearSolverKind::Amg) {
-    if (!amg_) amg_ = std::make_unique<AmgSolver>(), amg_->tolerance = iterativeTolerance_;
-    amg_->setMatrix(k);
+// GMRES preconditioned by BoomerAMG (mpm/implicit/amg_solver.hpp), made at the first use with the
+// iterative tolerance set by then.
+class AmgBackend final : public LinearSolverBackend {
+ public:
+  explicit AmgBackend(const LinearSolverOptions& options) : options_(options) {}
+  bool factorize(const Eigen::SparseMatrix<double>& k) override {
+    amg().setMatrix(k);
     return true;
   }
-#endif
-#ifdef ECM_HAVE_UMFPACK
-  if (kind_ == LinearSolverKind::Umfpack) {
-    if (!umfpack_) umfpack_ = std::make_unique<UmfpackFactors>();  // loads the library at the first use
-    if (!analysed_) {
-      if (!umfpack_->analyse(k)) return false;
-      analysed_ = true;
-    }
-    return umfpack_->factorise(k);
+  void forgetPattern() override {
+    if (amg_) amg_->forget();
   }
-#endif
-  if (!analysed_) lu_.analyzePattern(ones(k)), analysed_ = true;
-  lu_.factorize(k);
-  return lu_.info() == Eigen::Success;
-}
-
-Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) {
-#ifdef ECM_HAVE_HYPRE
-  if (kind_ == LinearSolverKind::Amg) {
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) override {
     Eigen::VectorXd x;
     amg_->solve(b, x);  // where GMRES fell short, Newton's residual says so
     return x;
   }
+  bool solvesExactly() const override { return false; }
+  bool needsComponents() const override { return true; }
+  void setComponents(std::vector<int> components) override { amg().setComponents(std::move(components)); }
+  const AmgStatistics* amgStatistics() const override { return amg_ ? &amg_->statistics() : nullptr; }
+
+ private:
+  AmgSolver& amg() {
+    if (!amg_) amg_ = std::make_unique<AmgSolver>(), amg_->tolerance = options_.iterativeTolerance;
+    return *amg_;
+  }
+  const LinearSolverOptions& options_;
+  std::unique_ptr<AmgSolver> amg_;
+};
 #endif
+
+}  // namespace
+
+std::unique_ptr<LinearSolverBackend> makeLinearSolverBackend(LinearSolverKind kind, [[maybe_unused]] const LinearSolverOptions& options) {
+  switch (kind) {
+    case LinearSolverKind::Amg:
+#ifdef ECM_HAVE_HYPRE
+      return std::make_unique<AmgBackend>(options);
+#else
+      break;  // (Scene::validate refuses it in a build without hypre)
+#endif
+    case LinearSolverKind::Umfpack:
 #ifdef ECM_HAVE_UMFPACK
-  if (kind_ == LinearSolverKind::Umfpack) return umfpack_->solve(b, copyAfter_, threads_);
+      return makeUmfpackBackend(options);
+#else
+      break;
 #endif
-  return lu_.solve(b);
+    case LinearSolverKind::SparseLU: break;
+  }
+  return std::make_unique<SparseLuBackend>();
 }
 
-long LinearSolver::factorCopies() const {
-#ifdef ECM_HAVE_UMFPACK
-  if (umfpack_) return umfpack_->copies;
-#endif
-  return 0;
-}
+LinearSolver::LinearSolver(LinearSolverKind kind) : backend_(makeLinearSolverBackend(kind, options_)) {}
+LinearSolver::~LinearSolver() = default;
+
+bool LinearSolver::factorize(const Eigen::SparseMatrix<double>& k) { return backend_->factorize(k); }
+void LinearSolver::forgetPattern() { backend_->forgetPattern(); }
+Eigen::VectorXd LinearSolver::solve(const Eigen::VectorXd& b) { return backend_->solve(b); }
+bool LinearSolver::solvesExactly() const { return backend_->solvesExactly(); }
+bool LinearSolver::needsComponents() const { return backend_->needsComponents(); }
+void LinearSolver::setComponents(std::vector<int> components) { backend_->setComponents(std::move(components)); }
+std::optional<long> LinearSolver::factorCopies() const { return backend_->factorCopies(); }
+const AmgStatistics* LinearSolver::amgStatistics() const { return backend_->amgStatistics(); }
 
 }  // namespace ecm::mpm

@@ -1,5 +1,5 @@
 #pragma once
-// The pieces of a checkpoint file (mpm/explicit/checkpoint.hpp, mpm/implicit/implicit_checkpoint.hpp): an encoder
+// The pieces of a checkpoint file (mpm/explicit/explicit_checkpoint.hpp, mpm/implicit/implicit_checkpoint.hpp): an encoder
 // and a bounds-checked decoder of plain numbers in the machine's byte order, the header that seals
 // a payload (signature, format version, byte-order mark, length, FNV-1a 64 checksum), and the
 // particle arrays both kinds of checkpoint store.
@@ -164,7 +164,7 @@ void getPlatens(Decoder& d, std::vector<Platen>& platens) {
   }
 }
 
-// The particle arrays and band states (format in mpm/explicit/checkpoint.hpp, "particles").
+// The particle arrays and band states (format in mpm/explicit/explicit_checkpoint.hpp, "particles").
 void putParticles(Encoder& e, const Particles& p);
 // Reads them into `p`, whose size, integrity and second-band arrays the scene set; refuses
 // (CheckpointError) a count or an index that does not fit it. `materials`: the scene's count.

@@ -18,7 +18,7 @@
 
 namespace ecm::mpm {
 
-// When a run writes its checkpoint (mpm/explicit/checkpoint.hpp) besides on a stop request: every N steps
+// When a run writes its checkpoint (mpm/explicit/explicit_checkpoint.hpp) besides on a stop request: every N steps
 // and/or every M minutes of wall time (0: never).
 struct CheckpointSettings {
   long everySteps = 0;

@@ -6,7 +6,7 @@
 #include "io/yaml_input.hpp"
 #include "material/parameter_check.hpp"
 #include "material/smeared_crack.hpp"
-#include "mpm/explicit/checkpoint.hpp"
+#include "mpm/explicit/explicit_checkpoint.hpp"
 #include "python/src/bindings.hpp"
 
 namespace ecm::python {

@@ -36,7 +36,7 @@ TEST_P(AffineField, EnrichedStressHistoryEqualsDirectMaterialUpdate) {
   all.box = {Vec2(-1.0, -1.0), Vec2(100.0, 100.0)};
   all.field = AffineVelocity{kRate * g, Vec2(30.0, 24.0), TimeFunction::smoothRamp(1.0, 2e-4)};
   s.conditions = {all};
-  Solver solver(s, 1);
+  ExplicitSolver solver(s, 1);
   const Particles& p = solver.particles();
   ASSERT_GT(p.size(), 0u);
 

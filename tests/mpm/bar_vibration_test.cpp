@@ -22,7 +22,7 @@ struct Measured {
 };
 
 Measured vibrate(const BarSetup& bar) {
-  Solver solver(bar.scene(), 1);
+  ExplicitSolver solver(bar.scene(), 1);
   bar.setInitialVelocity(solver);
   const auto& p = solver.particles();
   std::vector<double> phi(p.size());

@@ -15,7 +15,7 @@
 #include "../io/temp_dir.hpp"
 #include "io/csv_reader.hpp"
 #include "io/output_error.hpp"
-#include "mpm/explicit/checkpoint.hpp"
+#include "mpm/explicit/explicit_checkpoint.hpp"
 #include "mpm/output/run_files.hpp"
 #include "mpm/run.hpp"
 #include "test_scenes.hpp"
@@ -77,7 +77,7 @@ bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
   return true;
 }
 
-void expectSameState(const Solver& a, const Solver& b) {
+void expectSameState(const ExplicitSolver& a, const ExplicitSolver& b) {
   const Particles &p = a.particles(), &q = b.particles();
   EXPECT_TRUE(sameBits(p.position, q.position));
   EXPECT_TRUE(sameBits(p.origin, q.origin));
@@ -100,7 +100,7 @@ void expectSameState(const Solver& a, const Solver& b) {
           << "band " << i;
     }
   }
-  const Solver::StepState s = a.stepState(), t = b.stepState();
+  const ExplicitSolver::StepState s = a.stepState(), t = b.stepState();
   EXPECT_EQ(s.time, t.time);
   EXPECT_EQ(s.timeStep, t.timeStep);
   EXPECT_EQ(s.step, t.step);
@@ -116,21 +116,21 @@ void expectSameState(const Solver& a, const Solver& b) {
 
 TEST(Checkpoint, RestoresEveryArrayAndTheStepStateBitwise) {
   TempDir tmp;
-  Solver a(crackingBlock(), 1);
+  ExplicitSolver a(crackingBlock(), 1);
   for (int n = 0; n < 220; ++n) a.advance();
   ASSERT_GT(a.particles().bands.size(), 0u) << "the block should have cracked";
-  RunBookkeeping book;
+  ExplicitBookkeeping book;
   book.nextOutput = 1.1e-4;
   book.peakLoad = 1234.5;
   book.stopWatchPeak = 987.25;
   book.history = {4321, 0x1234567890abcdefull, 12};
   book.snapshotTimes = {0.0, 1e-5, 2e-5};
   const fs::path file = tmp.path() / "checkpoint.bin";
-  writeCheckpoint(file, a, book, 42);
+  writeExplicitCheckpoint(file, a, book, 42);
   EXPECT_FALSE(fs::exists(tmp.path() / "checkpoint.bin.tmp"));
 
-  Solver b(crackingBlock(), 1);
-  const RunBookkeeping read = readCheckpoint(file, b, 42);
+  ExplicitSolver b(crackingBlock(), 1);
+  const ExplicitBookkeeping read = readExplicitCheckpoint(file, b, 42);
   expectSameState(a, b);
   EXPECT_EQ(read.nextOutput, book.nextOutput);
   EXPECT_EQ(read.peakLoad, book.peakLoad);
@@ -152,13 +152,13 @@ TEST(Checkpoint, RestoresEveryArrayAndTheStepStateBitwise) {
 TEST(Checkpoint, RestoresTheSecondBandsBitwise) {
   TempDir tmp;
   const Scene scene = twoBandBlock();
-  Solver a(scene, 1);
+  ExplicitSolver a(scene, 1);
   while (a.particles().secondBands.empty() && a.time() < scene.endTime) a.advance();
   ASSERT_FALSE(a.particles().secondBands.empty()) << "second bands should open";
   const fs::path file = tmp.path() / "checkpoint.bin";
-  writeCheckpoint(file, a, RunBookkeeping{}, 42);
-  Solver b(scene, 1);
-  readCheckpoint(file, b, 42);
+  writeExplicitCheckpoint(file, a, ExplicitBookkeeping{}, 42);
+  ExplicitSolver b(scene, 1);
+  readExplicitCheckpoint(file, b, 42);
   expectSameState(a, b);
   for (int n = 0; n < 40; ++n) {
     a.advance();
@@ -168,9 +168,9 @@ TEST(Checkpoint, RestoresTheSecondBandsBitwise) {
   // The scene without the option has no second-band index: the checkpoint does not fit.
   Scene off = scene;
   off.materials[0].secondBand = SecondBandOption::Off;
-  Solver c(off, 1);
+  ExplicitSolver c(off, 1);
   try {
-    readCheckpoint(file, c, 42);
+    readExplicitCheckpoint(file, c, 42);
     FAIL() << "a checkpoint with second bands was read into a scene without them";
   } catch (const CheckpointError& e) {
     expectContains(e.what(), "second_band differs");
@@ -360,9 +360,9 @@ TEST(Determinism, StopOnTwoThreadsAndResumeOnOne) {
 // --- refusals -----------------------------------------------------------------------------
 
 std::string refusal(const fs::path& file, std::uint64_t sceneHash = 0, const Scene& scene = crackingBlock()) {
-  Solver s(scene, 1);
+  ExplicitSolver s(scene, 1);
   try {
-    readCheckpoint(file, s, sceneHash);
+    readExplicitCheckpoint(file, s, sceneHash);
   } catch (const CheckpointError& e) {
     expectContains(e.what(), file.string());
     return e.what();
@@ -373,10 +373,10 @@ std::string refusal(const fs::path& file, std::uint64_t sceneHash = 0, const Sce
 
 TEST(Checkpoint, RefusesMissingTruncatedCorruptedForeignOrOtherVersionFiles) {
   TempDir tmp;
-  Solver a(crackingBlock(), 1);
+  ExplicitSolver a(crackingBlock(), 1);
   for (int n = 0; n < 150; ++n) a.advance();
   const fs::path good = tmp.path() / "good.bin";
-  writeCheckpoint(good, a, {}, 7);
+  writeExplicitCheckpoint(good, a, {}, 7);
   const std::string bytes = bytesOf(good);
   auto variant = [&](const std::string& name, const std::string& content) {
     std::ofstream(tmp.path() / name, std::ios::binary) << content;
@@ -401,8 +401,8 @@ TEST(Checkpoint, RefusesMissingTruncatedCorruptedForeignOrOtherVersionFiles) {
   other.bodies.pop_back();  // no notch: more particles
   expectContains(refusal(good, 7, other), "particles, the scene");
   // The good one is accepted.
-  Solver b(crackingBlock(), 1);
-  EXPECT_NO_THROW(readCheckpoint(good, b, 7));
+  ExplicitSolver b(crackingBlock(), 1);
+  EXPECT_NO_THROW(readExplicitCheckpoint(good, b, 7));
 }
 
 TEST(Checkpoint, RestartRefusesAChangedHistoryAndTouchesNothing) {

@@ -11,7 +11,7 @@
 #include <map>
 
 #include "mpm/scene/scene_yaml.hpp"
-#include "mpm/explicit/solver.hpp"
+#include "mpm/explicit/explicit_solver.hpp"
 
 namespace ecm::mpm::test {
 namespace {
@@ -28,7 +28,7 @@ constexpr double kSymmetry = 0.5;
 
 TEST(Den, CoarsePanelCracksAtTheNotchTipsSymmetricallyAndPeaksInTheMeasuredWindow) {
   const Scene s = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data/den/den-4b-coarse.yaml");
-  Solver solver(s, 1);
+  ExplicitSolver solver(s, 1);
   const Particles& p = solver.particles();
   ASSERT_EQ(s.conditions[2].name, "top");
   double peak = 0.0, peakDelta = 0.0;
@@ -77,14 +77,14 @@ TEST(Den, CoarsePanelCracksAtTheNotchTipsSymmetricallyAndPeaksInTheMeasuredWindo
 }
 
 // The fused USL pass (mpm/explicit/fused_transfer.cpp) is the plain USL phase sequence (P2G, grid, G2P,
-// stress; Solver::advanceByPhases, mpm/explicit/step.cpp) with its sums in another order: within a part
+// stress; ExplicitSolver::advanceByPhases, mpm/explicit/step.cpp) with its sums in another order: within a part
 // it adds the closed-form points before the deferred ones. So the two agree to round-off, not
 // bitwise: on the reduced DEN through its peak, the load history to 1e-12 of the peak and the
 // same particles cracked.
 TEST(Den, FusedUslPassAgreesWithThePlainPhaseSequenceThroughThePeak) {
   const Scene s = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data/den/den-4b-coarse.yaml");
   ASSERT_EQ(s.solver.explicitScheme.scheme, UpdateScheme::USL);
-  Solver fused(s, 1), plain(s, 1);  // one thread: ctest runs tests side by side
+  ExplicitSolver fused(s, 1), plain(s, 1);  // one thread: ctest runs tests side by side
   double peak = 0.0, worst = 0.0;
   long steps = 0;
   while (fused.time() < s.endTime) {

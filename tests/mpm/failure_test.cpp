@@ -15,7 +15,7 @@ TEST(Failure, ParticleLeavingTheGridIsReportedWithIdPositionAndStep) {
   s.grid = {Vec2::Zero(), Vec2(10.0, 10.0), 10, 4};
   s.materials = {elasticMaterial()};
   s.bodies = {{Shape::rectangle(Vec2(60.0, 10.0), Vec2(90.0, 30.0)), 0, false, Vec2(2e5, 0.0)}};  // 200 m/s to +x
-  Solver solver(s, 1);
+  ExplicitSolver solver(s, 1);
   try {
     for (int n = 0; n < 10000; ++n) solver.advance();
     FAIL() << "no failure reported";
@@ -32,7 +32,7 @@ TEST(Failure, ParticleLeavingTheGridIsReportedWithIdPositionAndStep) {
 }
 
 TEST(Failure, NanIsReportedWithStepAndParticle) {
-  Solver solver(tensionBlock(), 1);
+  ExplicitSolver solver(tensionBlock(), 1);
   solver.advance();
   solver.editParticles().velocity[7] = Vec2(NAN, 0.0);
   try {
@@ -61,7 +61,7 @@ Scene snapBackBlock() {
 }
 
 TEST(Failure, SnapBackIsReleasedByDefaultAndCounted) {
-  Solver solver(snapBackBlock(), 1);
+  ExplicitSolver solver(snapBackBlock(), 1);
   double peak = 0.0;
   int after = 0;
   for (int n = 0; n < 100000 && after < 10; ++n) {
@@ -86,7 +86,7 @@ TEST(Failure, SnapBackUnderTheStopPolicyStopsTheRunWithStatusAndResidual) {
   // stable branch, are counted, and the run goes on.
   Scene s = snapBackBlock();
   s.solver.snapBack = SnapBackPolicy::Stop;
-  Solver solver(s, 1);
+  ExplicitSolver solver(s, 1);
   try {
     for (int n = 0; n < 100000; ++n) solver.advance();
     FAIL() << "no failure reported";
@@ -134,7 +134,7 @@ TEST(Failure, ParticlesTooCloseToTheGridEdgeForTheShapeFunctionAreRefusedBySeedi
   Scene s = tensionBlock();
   s.solver.shapeFunction = ShapeFunction::BSpline2;
   try {
-    Solver solver(s, 1);
+    ExplicitSolver solver(s, 1);
     FAIL() << "accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_TRUE(contains(e.what(), "within 1.5 cells of the grid edge")) << e.what();

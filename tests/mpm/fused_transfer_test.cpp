@@ -17,7 +17,7 @@ TEST_P(FusedUsl, RebuiltGridIsBitwiseTheFusedOne) {
   Scene scene = notchedCrackingBlock();
   scene.solver.shapeFunction = GetParam();
   ASSERT_EQ(scene.solver.explicitScheme.scheme, UpdateScheme::USL);
-  Solver fused(scene, 2), rebuilt(scene, 2);
+  ExplicitSolver fused(scene, 2), rebuilt(scene, 2);
   long deferredSteps = 0;
   for (int n = 0; n < 200; ++n) {
     fused.advance();

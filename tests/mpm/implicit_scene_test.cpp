@@ -9,7 +9,7 @@
 
 #include "../io/temp_dir.hpp"
 #include "run_helpers.hpp"
-#include "mpm/explicit/checkpoint.hpp"
+#include "mpm/explicit/explicit_checkpoint.hpp"
 #include "mpm/run.hpp"
 #include "mpm/scene/scene_yaml.hpp"
 

@@ -8,7 +8,7 @@
 
 #include <cmath>
 
-#include "mpm/explicit/solver.hpp"
+#include "mpm/explicit/explicit_solver.hpp"
 #include "test_scenes.hpp"
 
 namespace ecm::mpm::test {
@@ -32,7 +32,7 @@ Scene risingBlock(ShapeFunction shape, int ppc, double v0, double cfl = 0.6) {
 
 // The block's particles stretched by 1e-4 along y (sigma_yy about 0.1 MPa) and spread in y by
 // the same, so that the rise starts from a stressed state.
-void prestress(Solver& solver) {
+void prestress(ExplicitSolver& solver) {
   Particles& p = solver.editParticles();
   for (std::size_t i = 0; i < p.size(); ++i) {
     p.strain[i] = Voigt(0.0, 1e-4, 0.0);
@@ -42,7 +42,7 @@ void prestress(Solver& solver) {
   }
 }
 
-double kineticEnergy(const Solver& s) {
+double kineticEnergy(const ExplicitSolver& s) {
   const Particles& p = s.particles();
   double e = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) e += 0.5 * p.mass[i] * p.velocity[i].squaredNorm();
@@ -56,7 +56,7 @@ TEST(MassScaling, NoFullOrSurfaceNodeIsEverScaled) {
   for (const double cfl : {0.6, 0.9})
   for (const ShapeFunction shape : {ShapeFunction::Linear, ShapeFunction::UGimp, ShapeFunction::BSpline2})
     for (int ppc = 1; ppc <= 4; ++ppc) {
-      Solver solver(risingBlock(shape, ppc, 0.0, cfl), 1);
+      ExplicitSolver solver(risingBlock(shape, ppc, 0.0, cfl), 1);
       prestress(solver);
       for (int k = 0; k < 5; ++k) solver.advance();
       EXPECT_EQ(solver.massScaled(), 0) << "shape " << static_cast<int>(shape) << ", " << ppc << " particles per cell, cfl " << cfl;
@@ -71,7 +71,7 @@ TEST(MassScaling, NoFullOrSurfaceNodeIsEverScaled) {
 // the crossing of two rows of cells.
 TEST(MassScaling, ParticlesEnteringEmptyCellsDoNotShakeTheirNodesApart) {
   const double v0 = 500.0;
-  Solver solver(risingBlock(ShapeFunction::Linear, 2, v0), 1);
+  ExplicitSolver solver(risingBlock(ShapeFunction::Linear, 2, v0), 1);
   const double own = 0.5 * 20.0 * 20.0 * 1.0 * 1e-9 * v0 * v0;  // N mm: 1 mm thick
   double top = 0.0;
   for (int k = 0; k < 6000; ++k) {

@@ -42,7 +42,7 @@ Scene twoDisks(int cells, double cflScale = 1.0, ShapeFunction shape = ShapeFunc
 double total(const Energies& e) { return e.kinetic + e.strain; }
 
 TEST(MuslEnergy, ReportedEnergyChangeIsTheSchemesDissipationEveryStep) {
-  Solver solver(twoDisks(64), 1);
+  ExplicitSolver solver(twoDisks(64), 1);
   const Particles& p = solver.particles();
   const double e0 = total(solver.energies());
   double before = e0, worst = 0.0, removed = 0.0, added = 0.0;
@@ -73,7 +73,7 @@ TEST(MuslEnergy, ReportedEnergyChangeIsTheSchemesDissipationEveryStep) {
 // quadratic B-splines lose 0.13 %. At this test's 64 cells: 1.56 % (dt), 0.97 % (dt/2, ratio
 // 1.61), 0.24 % (B-spline, 0.15 of linear); the bounds below leave a margin of 1.3-2 on those.
 double lossAtEnd(const Scene& s) {
-  Solver solver(s, 1);
+  ExplicitSolver solver(s, 1);
   const double e0 = total(solver.energies());
   while (solver.time() < s.endTime - 0.5 * solver.timeStep()) solver.advance();
   return 1.0 - total(solver.energies()) / e0;

@@ -52,8 +52,8 @@ TEST(SharedMassAndVolume, SeededPointsOfAMaterialShareThem) {
 // order of the sums). With the shared values it would carry a third of its mass.
 TEST(SharedMassAndVolume, APointWithItsOwnMassIsScatteredWithIt) {
   Scene scene = notchedCrackingBlock();
-  Solver fused(scene, 1), plain(scene, 1);
-  for (Solver* s : {&fused, &plain}) {
+  ExplicitSolver fused(scene, 1), plain(scene, 1);
+  for (ExplicitSolver* s : {&fused, &plain}) {
     Particles& p = s->editParticles();
     p.mass[100] *= 3.0;
     p.volume[100] *= 3.0;

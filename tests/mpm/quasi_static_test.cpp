@@ -11,7 +11,7 @@ namespace {
 
 TEST(QuasiStatic, ReactionEqualsAppliedLoadAndDisplacementMatchesHooke) {
   const double force = 1000.0;
-  Solver solver(tensionBlock(force), 1);
+  ExplicitSolver solver(tensionBlock(force), 1);
   while (solver.time() < solver.scene().endTime) solver.advance();
   const Vec2 reaction = solver.conditions()[0].reaction;
   EXPECT_NEAR(reaction[1], -force, 0.005 * force);
@@ -46,7 +46,7 @@ TEST(QuasiStatic, PrescribedDisplacementReactionMatchesStiffness) {
   top.box = {Vec2(-1.0, 100.0), Vec2(101.0, 100.0)};
   top.component[1] = {Prescribed::Displacement, TimeFunction::smoothRamp(0.01, 3e-4)};
   s.conditions.push_back(top);
-  Solver solver(s, 1);
+  ExplicitSolver solver(s, 1);
   while (solver.time() < s.endTime) solver.advance();
   const double expected = 32000.0 * 100.0 * 0.01 / 100.0;  // E (b t) u / L = 32 N... per mm thickness
   EXPECT_NEAR(solver.conditions()[1].displacement[1], 0.01, 1e-15);

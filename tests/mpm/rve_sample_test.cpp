@@ -10,7 +10,7 @@
 #include "mpm/scene/rve_sample.hpp"
 #include "mpm/scene/scene_yaml.hpp"
 #include "mpm/setup/seeding.hpp"
-#include "mpm/explicit/solver.hpp"
+#include "mpm/explicit/explicit_solver.hpp"
 
 namespace ecm::mpm::test {
 namespace {
@@ -302,7 +302,7 @@ conditions:
 TEST(RveScene, SmallRveCracksFirstInTheItz) {
   for (const int seed : {1, 2, 3}) {
     const Scene s = rveScene(smallRve(seed));
-    Solver solver(s, 1);
+    ExplicitSolver solver(s, 1);
     while (solver.particles().bands.empty() && solver.time() < s.endTime) solver.advance();
     const Particles& p = solver.particles();
     ASSERT_FALSE(p.bands.empty()) << "seed " << seed << ": nothing cracked by t = " << solver.time() << " s";
@@ -323,7 +323,7 @@ TEST(RveScene, SmallRveCracksFirstInTheItz) {
 // enriched update keep the run going, ecm-mpm's default).
 TEST(RveScene, SmallRveSoftensAfterItsPeak) {
   const Scene s = rveScene(smallRve(1));
-  Solver solver(s, 1);
+  ExplicitSolver solver(s, 1);
   double peak = 0.0, peakStrain = 0.0, last = 0.0;
   while (solver.time() < s.endTime) {
     solver.advance();

@@ -63,7 +63,7 @@ TEST(Seeding, MaterialsNoParticleUsesCostNothing) {
   s.grid = {Vec2::Zero(), Vec2(1.0, 1.0), 20, 20};
   s.materials = {elasticMaterial()};
   s.bodies = {{Shape::rectangle(Vec2(2, 2), Vec2(18, 18)), 0, false, Vec2::Zero()}};
-  const Solver plain(s, 1);
+  const ExplicitSolver plain(s, 1);
 
   MaterialParams smeared = paperConcrete();
   smeared.name = "smeared";
@@ -75,13 +75,13 @@ TEST(Seeding, MaterialsNoParticleUsesCostNothing) {
   stiff.elastic.youngsModulus = 200000.0;
   s.materials.push_back(smeared);
   s.materials.push_back(stiff);
-  const Solver listed(s, 1);
+  const ExplicitSolver listed(s, 1);
   EXPECT_EQ(listed.particles().bytesPerParticle(), plain.particles().bytesPerParticle());
   EXPECT_TRUE(listed.particles().integrity.empty());
   EXPECT_EQ(listed.timeStep(), plain.timeStep());
 
   s.bodies.push_back({Shape::rectangle(Vec2(2, 2), Vec2(4, 4)), 1, false, Vec2::Zero()});  // now used
-  const Solver used(s, 1);
+  const ExplicitSolver used(s, 1);
   EXPECT_EQ(used.particles().bytesPerParticle(), plain.particles().bytesPerParticle() + sizeof(double));
 }
 
@@ -92,7 +92,7 @@ TEST(ParticleToGrid, ConservesMassAndMomentumAndInternalForcesSumToZero) {
     s.conditions.clear();
     s.loads.clear();
     s.solver.shapeFunction = f;
-    Solver solver(s, 1);
+    ExplicitSolver solver(s, 1);
     MpmState& st = solver.editState();
     Particles& p = st.particles;
     double mass = 0.0;

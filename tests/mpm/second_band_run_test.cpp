@@ -48,7 +48,7 @@ TEST(SecondBandRun, OpensSecondBandsAndWritesThem) {
 
 TEST(SecondBandRun, KeepsContinuityOnBothBandsAndIsIndependentOfTheThreads) {
   const Scene s = twoBandBlock();
-  Solver one(s, 1), two(s, 2);
+  ExplicitSolver one(s, 1), two(s, 2);
   while (one.time() < s.endTime) {
     one.advance();
     two.advance();

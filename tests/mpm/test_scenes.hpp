@@ -4,7 +4,7 @@
 #include <numbers>
 
 #include "../paper_constants.hpp"
-#include "mpm/explicit/solver.hpp"
+#include "mpm/explicit/explicit_solver.hpp"
 
 namespace ecm::mpm::test {
 
@@ -64,7 +64,7 @@ struct BarSetup {
     return s;
   }
   // v(X, 0) = v0 cos(pi (X - x0) / L): mode 1, u(X, t) = v0 / omega cos(...) sin(omega t).
-  void setInitialVelocity(Solver& solver) const {
+  void setInitialVelocity(ExplicitSolver& solver) const {
     auto& p = solver.editParticles();
     for (std::size_t i = 0; i < p.size(); ++i) p.velocity[i] = Vec2(v0() * mode(p.position[i][0]), 0.0);
   }

@@ -19,7 +19,7 @@ Scene crackingBlock(UpdateScheme scheme, ShapeFunction shape) {
   return s;
 }
 
-void expectBitwiseEqual(const Solver& a, const Solver& b) {
+void expectBitwiseEqual(const ExplicitSolver& a, const ExplicitSolver& b) {
   const Particles &p = a.particles(), &q = b.particles();
   ASSERT_EQ(p.bands.size(), q.bands.size());
   for (std::size_t i = 0; i < p.size(); ++i) {
@@ -43,7 +43,7 @@ class ThreadCount : public ::testing::TestWithParam<std::tuple<UpdateScheme, Sha
 TEST_P(ThreadCount, OneTwoAndThreeThreadsGiveTheSameBits) {
   const auto [scheme, shape] = GetParam();
   const Scene s = crackingBlock(scheme, shape);
-  Solver one(s, 1), two(s, 2), three(s, 3);
+  ExplicitSolver one(s, 1), two(s, 2), three(s, 3);
   ASSERT_EQ(three.threads(), 3);
   for (int n = 0; n < 200; ++n) {
     one.advance();
@@ -68,8 +68,8 @@ INSTANTIATE_TEST_SUITE_P(
 // not depend on the thread count.
 TEST(ThreadCount, AFarParticleScattersAloneWithTheSameBits) {
   const Scene s = crackingBlock(UpdateScheme::USL, ShapeFunction::Linear);
-  Solver one(s, 1), two(s, 2);
-  for (Solver* solver : {&one, &two}) {
+  ExplicitSolver one(s, 1), two(s, 2);
+  for (ExplicitSolver* solver : {&one, &two}) {
     for (int n = 0; n < 20; ++n) solver->advance();
     const std::size_t moved = 300;
     const Vec2 x = solver->particles().position[moved] + Vec2(0.0, 45.0);  // nine 5 mm cells up

@@ -1,5 +1,5 @@
 // The fused USL pass does not store the stress of a point whose stress follows its strain
-// (elastic, intact enriched: a : strain, Material::stressFollowsStrain); Solver::particles()
+// (elastic, intact enriched: a : strain, Material::stressFollowsStrain); ExplicitSolver::particles()
 // stores it when someone reads the particles (docs/performance.md, "Fewer
 // bytes per particle"). That is only right if every update of such a point ends with exactly
 // that product (tests/material/stress_follows_strain_test.cpp), and if storing on read changes
@@ -28,7 +28,7 @@ bool sameBits(const Voigt& a, const Voigt& b) {
 // fused pass left unstored are really stored on read (the test would pass vacuously otherwise),
 // while MUSL's passes store every stress themselves.
 void expectStoringOnReadChangesNothing(Scene scene, int steps, bool leavesStressesUnstored) {
-  Solver readEveryStep(scene, 2), readAtEnd(scene, 2);
+  ExplicitSolver readEveryStep(scene, 2), readAtEnd(scene, 2);
   long unstoredSeen = 0;
   for (int n = 0; n < steps; ++n) {
     readAtEnd.advance();

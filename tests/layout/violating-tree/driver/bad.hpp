@@ -1,3 +1,3 @@
 #pragma once
 // A fixture for the include-map check: the driver must not include the MPM solver.
-#include "mpm/explicit/solver.hpp"
+#include "mpm/explicit/explicit_solver.hpp"
