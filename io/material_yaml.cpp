@@ -35,14 +35,6 @@ double modelKey(const YamlMap& m, const std::string& key, bool needed, const std
   return m.get<double>(key);
 }
 
-// The YAML key named at the start of a ParameterError ("parameter 'youngs_modulus E (MPa)' = ...").
-std::string keyOfParameterError(const std::string& what) {
-  const auto start = what.find('\'');
-  if (start == std::string::npos) return {};
-  const auto end = what.find_first_of(" '", start + 1);
-  return what.substr(start + 1, end == std::string::npos ? std::string::npos : end - start - 1);
-}
-
 std::filesystem::path resolve(const YamlMap& map, const std::filesystem::path& dataDir) {
   const std::filesystem::path ref = map.get<std::string>("file");
   std::vector<std::filesystem::path> candidates;
@@ -102,9 +94,8 @@ MaterialParams readInline(const YamlMap& m, const std::string& defaultName) {
   try {
     p.validate();
   } catch (const ParameterError& e) {
-    // At the line of the key the message names (line(key) falls back to the map's line).
-    const std::string key = keyOfParameterError(e.what());
-    throw InputError(m.file(), key.empty() ? m.line() : m.line(key), "material '" + p.name + "': " + e.what());
+    // At the line of the key at fault (line(key) falls back to the map's line).
+    throw InputError(m.file(), e.key.empty() ? m.line() : m.line(e.key), "material '" + p.name + "': " + e.what());
   }
   return p;
 }

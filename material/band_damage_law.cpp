@@ -1,4 +1,5 @@
 #include "material/band_damage_law.hpp"
+#include "material/band_onset.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -69,30 +70,7 @@ BandResponse BandDamageLaw::evaluate(const LoadingSurface& surface, const Voigt&
 }
 
 std::optional<double> BandDamageLaw::onsetFraction(const Voigt& strain, const Voigt& increment) const {
-  const double yOnset = onsetY_;
-  auto excess = [&](double a) { return drivingForceValue(stiffness_ * (strain + a * increment)) - yOnset; };
-  double gb = excess(1.0);
-  if (gb < 0.0) return std::nullopt;
-  double ga = excess(0.0);
-  if (ga >= 0.0) return 0.0;
-  // Illinois regula falsi on the piecewise-quadratic Y(alpha) (docs/model.md pitfall 1).
-  double a = 0.0, b = 1.0;
-  int side = 0;
-  for (int it = 0; it < 200 && b - a > 1e-15; ++it) {
-    const double c = (a * gb - b * ga) / (gb - ga);
-    const double gc = excess(c);
-    if (std::abs(gc) <= 1e-15 * yOnset) return c;
-    if (gc < 0.0) {
-      a = c, ga = gc;
-      if (side == -1) gb *= 0.5;
-      side = -1;
-    } else {
-      b = c, gb = gc;
-      if (side == +1) ga *= 0.5;
-      side = +1;
-    }
-  }
-  return b;  // the end of the bracket at which the criterion is met
+  return onsetFractionOf([&](double a) { return drivingForceValue(stiffness_ * (strain + a * increment)) - onsetY_; }, onsetY_);
 }
 
 }  // namespace ecm

@@ -21,7 +21,7 @@ void DamageLawParams::validate() const {
   // The strain at onset, f_t' / E, a number (a denormal E made it infinite and the update crawl
   // through its sub-steps: found by fuzz/fuzz_umat.cpp). Onset strains far above 1 stay allowed:
   // the extremes tests hold the update finite there.
-  requireInRange("the strain at onset ft / E", tensileStrength / youngsModulus, 0.0, 1e300);
+  requireInRange("tensile_strength / youngs_modulus (the strain at onset ft / E)", tensileStrength / youngsModulus, 0.0, 1e300);
 }
 
 namespace {

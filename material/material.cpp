@@ -19,7 +19,7 @@ const char* toString(ModelKind k) {
 void MaterialParams::validate() const {
   if (model != ModelKind::Enriched && secondBand != SecondBandOption::Off)
     throw ParameterError(std::string("second_band: ") + toString(secondBand) + " needs the enriched model (model " +
-                         toString(model) + " has no band)");
+                         toString(model) + " has no band)", "second_band");
   elastic.validate();
   requireInRange("density (t/mm^3)", density, 0.0, 1e300, true);
   if (model == ModelKind::LinearElastic) return;
@@ -54,7 +54,7 @@ namespace {
 const MaterialParams& checked2D(const MaterialParams& p) {
   if (p.elastic.hypothesis == Hypothesis::ThreeDimensional)
     throw ParameterError("hypothesis three_dimensional needs a 3D caller (ecm-point, the UMAT; Material3D): "
-                         "this one is 2D (plane_stress | plane_strain)");
+                         "this one is 2D (plane_stress | plane_strain)", "hypothesis");
   p.validate();
   return p;
 }

@@ -8,9 +8,9 @@ namespace {
 MaterialParams checked3D(const MaterialParams& p) {
   if (p.elastic.hypothesis != Hypothesis::ThreeDimensional)
     throw ParameterError("a 3D material needs hypothesis: three_dimensional (the material has " +
-                         std::string(toString(p.elastic.hypothesis)) + ")");
+                         std::string(toString(p.elastic.hypothesis)) + ")", "hypothesis");
   if (p.model == ModelKind::SmearedCrack)
-    throw ParameterError("model smeared_crack is not offered in 3D: use enriched or linear_elastic");
+    throw ParameterError("model smeared_crack is not offered in 3D: use enriched or linear_elastic", "model");
   p.validate();
   return p;
 }

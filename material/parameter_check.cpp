@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <string>
 
 namespace ecm {
 
@@ -13,7 +14,8 @@ void requireInRange(const char* name, double value, double lo, double hi, bool l
   msg.precision(10);
   msg << "parameter '" << name << "' = " << value << " is outside the allowed range "
       << (loClosed ? "[" : "(") << lo << ", " << hi << (hiClosed ? "]" : ")");
-  throw ParameterError(msg.str());
+  const std::string key(name);
+  throw ParameterError(msg.str(), key.substr(0, key.find(' ')));
 }
 
 }  // namespace ecm

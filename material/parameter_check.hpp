@@ -7,10 +7,13 @@
 namespace ecm {
 
 struct ParameterError : std::invalid_argument {
-  using std::invalid_argument::invalid_argument;
+  explicit ParameterError(const std::string& what, std::string parameterKey = {})
+      : std::invalid_argument(what), key(std::move(parameterKey)) {}
+  std::string key;  // the parameter's key as input files spell it ("" where no one key is at fault)
 };
 
-// Requires lo < value < hi (open bounds) unless the corresponding *Closed flag is set.
+// Requires lo < value < hi (open bounds) unless the corresponding *Closed flag is set. `name` is the
+// parameter's key, then (after a space) its symbol and unit: "youngs_modulus E (MPa)".
 void requireInRange(const char* name, double value, double lo, double hi, bool loClosed = false,
                     bool hiClosed = false);
 

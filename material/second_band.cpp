@@ -12,6 +12,7 @@
 #include "material/driving_force.hpp"
 #include "material/free_sliding.hpp"
 #include "material/two_phase_point.hpp"
+#include "material/release_scan.hpp"
 
 namespace ecm {
 

@@ -8,6 +8,7 @@
 
 #include "material/driving_force.hpp"
 #include "material/parameter_check.hpp"
+#include "material/release_scan.hpp"
 
 namespace ecm {
 
@@ -109,8 +110,7 @@ UpdateResult TwoPhasePoint::releaseSnapBack(BandState& b, Voigt& strain, const V
   const double f = b.volumeFraction;
   // With the damage frozen at x, Eq. (6) is linear in [u] (secant K of Eq. (9)): [u](x) in one
   // solve. The band is in equilibrium with consistent damage where g(x) = Y([u](x)) - F(x) = 0.
-  // g > 0 at x0 (the band must load); g -> -inf as x -> 0 (F ~ x^-2n, Y bounded). Scan x down
-  // geometrically for sign changes, solve each in log x, keep the first stable root.
+  // g > 0 at x0 (the band must load); g -> -inf as x -> 0 (material/release_scan.hpp).
   struct Probe {
     double g;
     BandState band;
@@ -127,50 +127,22 @@ UpdateResult TwoPhasePoint::releaseSnapBack(BandState& b, Voigt& strain, const V
   };
   UpdateResult res;
   res.status = UpdateStatus::SnapBack;
-  Probe hi = probe(b.integrity);
-  for (int k = 0; k < kMaxReleaseSteps && hi.band.integrity > 1e-300; ++k) {
-    Probe lo = probe(hi.band.integrity * kReleaseScanRatio);
-    ++res.iterations;
-    if (!(lo.g <= 0.0) || !(hi.g > 0.0)) {
-      hi = lo;
-      continue;
-    }
-    // Illinois regula falsi in log x on the bracket [lo, hi].
-    double la = std::log(lo.band.integrity), lb = std::log(hi.band.integrity), ga = lo.g, gb = hi.g;
-    Probe root = lo;
-    int side = 0;
-    for (int it = 0; it < 100 && lb - la > 1e-15 * std::abs(lb) + 1e-300; ++it) {
-      const double lc = (la * gb - lb * ga) / (gb - ga);
-      root = probe(std::exp(lc));
-      ++res.iterations;
-      if (std::abs(root.g) <= 1e-14) break;
-      if (root.g < 0.0) {
-        la = lc, ga = root.g;
-        if (side == -1) gb *= 0.5;
-        side = -1;
-      } else {
-        lb = lc, gb = root.g;
-        if (side == +1) ga *= 0.5;
-        side = +1;
-      }
-    }
-    // Polish with the regular update at zero increment: it confirms continuity, loading
-    // consistency and stability (K of Eq. (9) positive), or reports this root unstable.
+  // Polish each root with the regular update at zero increment: it confirms continuity, loading
+  // consistency and stability (K of Eq. (9) positive), or reports this root unstable.
+  releaseScan(probe, b.integrity, res.iterations, [&](const Probe& root) {
     BandState trial = root.band;
     Voigt s = eps;
     const UpdateResult r = predictCorrect(trial, s, Voigt::Zero(), tangent);
     const bool isStable = r.converged() && positiveDefinite(equilibrium(trial, law_.envelope(trial.integrity), eps, trial.jump, true).jacobian);
-    if (isStable) {
-      res = r;
-      res.iterations += r.iterations;
-      res.released = true;
-      res.dissipation = f * law_.dissipation(b.integrity, trial.integrity);  // f int Y dD over the release
-      b = trial;
-      strain = eps;
-      return res;
-    }
-    hi = lo;  // unstable root: look further down
-  }
+    if (!isStable) return false;
+    res = r;
+    res.iterations += r.iterations;
+    res.released = true;
+    res.dissipation = f * law_.dissipation(b.integrity, trial.integrity);  // f int Y dD over the release
+    b = trial;
+    strain = eps;
+    return true;
+  });
   return res;
 }
 

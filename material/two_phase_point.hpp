@@ -298,8 +298,6 @@ class TwoPhasePoint {
   UpdateResult updateIntactSlow(Voigt& strain, const Voigt& strainIncrement, const EffectiveSize& size,
                                 std::optional<BandState>& onset, UpdateOptions options,
                                 std::optional<BandState>* secondOnset) const;
-  static constexpr int kMaxReleaseSteps = 2000;     // scan steps of the release, x0 * ratio^k
-  static constexpr double kReleaseScanRatio = 0.9;  // (0.9^2000 ~ 1e-92: down to a failed band)
 
   BandDamageLaw law_;
   double bandWidth_;

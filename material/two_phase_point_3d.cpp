@@ -7,7 +7,9 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "material/band_onset.hpp"
 #include "material/parameter_check.hpp"
+#include "material/release_scan.hpp"
 
 namespace ecm {
 
@@ -44,7 +46,7 @@ TwoPhasePoint3D::TwoPhasePoint3D(const EnrichedParams& p)
   if (p.secondBand != SecondBandOption::Off)
     throw ParameterError(std::string("second_band: ") + toString(p.secondBand) +
                          " is not offered in 3D: a second band needs a normal chosen among the directions of the "
-                         "first band's plane, which the 2D rule (the band's tangent) does not fix (docs/model.md)");
+                         "first band's plane, which the 2D rule (the band's tangent) does not fix (docs/model.md)", "second_band");
 }
 
 BandResponse3 TwoPhasePoint3D::evaluateBand(const BandDamageLaw::LoadingSurface& surface, const Voigt6& strain,
@@ -105,29 +107,8 @@ double TwoPhasePoint3D::storedEnergy(const BandState3& b, const Voigt6& strain) 
 
 std::optional<double> TwoPhasePoint3D::onsetFraction(const Voigt6& strain, const Voigt6& increment) const {
   const double yOnset = law_.onsetDrivingForce();
-  const auto excess = [&](double a) { return drivingForceValue3(aTimes(stiffness_, strain + a * increment), e_, nu_) - yOnset; };
-  double gb = excess(1.0);
-  if (gb < 0.0) return std::nullopt;
-  double ga = excess(0.0);
-  if (ga >= 0.0) return 0.0;
-  // Illinois regula falsi on the piecewise-quadratic Y(alpha) (docs/model.md pitfall 1).
-  double a = 0.0, b = 1.0;
-  int side = 0;
-  for (int it = 0; it < 200 && b - a > 1e-15; ++it) {
-    const double c = (a * gb - b * ga) / (gb - ga);
-    const double gc = excess(c);
-    if (std::abs(gc) <= 1e-15 * yOnset) return c;
-    if (gc < 0.0) {
-      a = c, ga = gc;
-      if (side == -1) gb *= 0.5;
-      side = -1;
-    } else {
-      b = c, gb = gc;
-      if (side == +1) ga *= 0.5;
-      side = +1;
-    }
-  }
-  return b;
+  return onsetFractionOf([&](double a) { return drivingForceValue3(aTimes(stiffness_, strain + a * increment), e_, nu_) - yOnset; },
+                         yOnset);
 }
 
 Vec3 TwoPhasePoint3D::onsetNormal(const Voigt6& strain) const {
@@ -194,53 +175,26 @@ UpdateResult3 TwoPhasePoint3D::releaseSnapBack(BandState3& b, Voigt6& strain, co
     p.g = moved.band.drivingForce / damageFunction(law_.law(), x) - 1.0;
     return p;
   };
-  constexpr int kMaxReleaseSteps = 2000;
-  constexpr double kReleaseScanRatio = 0.9;
   UpdateResult3 res;
   res.status = UpdateStatus::SnapBack;
-  Probe hi = probe(b.integrity);
-  for (int k = 0; k < kMaxReleaseSteps && hi.band.integrity > 1e-300; ++k) {
-    Probe lo = probe(hi.band.integrity * kReleaseScanRatio);
-    ++res.iterations;
-    if (!(lo.g <= 0.0) || !(hi.g > 0.0)) {
-      hi = lo;
-      continue;
-    }
-    double la = std::log(lo.band.integrity), lb = std::log(hi.band.integrity), ga = lo.g, gb = hi.g;
-    Probe root = lo;
-    int side = 0;
-    for (int it = 0; it < 100 && lb - la > 1e-15 * std::abs(lb) + 1e-300; ++it) {
-      const double lc = (la * gb - lb * ga) / (gb - ga);
-      root = probe(std::exp(lc));
-      ++res.iterations;
-      if (std::abs(root.g) <= 1e-14) break;
-      if (root.g < 0.0) {
-        la = lc, ga = root.g;
-        if (side == -1) gb *= 0.5;
-        side = -1;
-      } else {
-        lb = lc, gb = root.g;
-        if (side == +1) ga *= 0.5;
-        side = +1;
-      }
-    }
+  // Polish each root with the regular update at zero increment: it confirms continuity, loading
+  // consistency and stability, or reports this root unstable.
+  releaseScan(probe, b.integrity, res.iterations, [&](const Probe& root) {
     BandState3 trial = root.band;
     Voigt6 s = eps;
     const UpdateResult3 r = predictCorrect(trial, s, Voigt6::Zero(), tangent, 0);
     const bool isStable =
         r.converged() &&
         positiveDefinite3(equilibrium(trial, law_.envelope(trial.integrity), eps, trial.jump, true).jacobian);
-    if (isStable) {
-      res = r;
-      res.iterations += r.iterations;
-      res.released = true;
-      res.dissipation = f * law_.dissipation(b.integrity, trial.integrity);  // f int Y dD over the release
-      b = trial;
-      strain = eps;
-      return res;
-    }
-    hi = lo;
-  }
+    if (!isStable) return false;
+    res = r;
+    res.iterations += r.iterations;
+    res.released = true;
+    res.dissipation = f * law_.dissipation(b.integrity, trial.integrity);  // f int Y dD over the release
+    b = trial;
+    strain = eps;
+    return true;
+  });
   return res;
 }
 

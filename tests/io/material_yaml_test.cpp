@@ -131,6 +131,16 @@ TEST(MaterialYaml, RangeErrorsOfValidateComeBackWithTheKeyLine) {
   expectContains(en.what(), "poisson_ratio");
 }
 
+TEST(MaterialYaml, AnErrorWithoutAQuotedKeyStillComesBackAtItsKeysLine) {
+  // second_band on a model without a band: the material library names the key as data
+  // (ParameterError::key), so the reader reports second_band's line (9), not the map's (1).
+  std::string text = std::string(kEnriched) + "second_band: orthogonal\n";
+  text.replace(text.find("enriched"), 8, "smeared_crack");
+  const InputError e = inputError([&] { readMaterial(parseYaml(text, "s.yaml")); });
+  EXPECT_EQ(e.line, 9) << e.what();
+  expectContains(e.what(), "second_band");
+}
+
 TEST(MaterialYaml, SmearedRegularisationReplacesTheSofteningModulus) {
   std::string text = std::string(kEnriched) + "regularised_for_size: 100\nfracture_energy: 0.11\n";
   text.replace(text.find("enriched"), 8, "smeared_crack");

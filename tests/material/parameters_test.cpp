@@ -11,11 +11,14 @@ namespace {
 
 MaterialParams concrete() { return test::paperConcreteMaterial(); }
 
+// The error carries the parameter's key as data (ParameterError::key: the YAML readers report the
+// key's line from it), and the message names it with the value and the allowed range.
 void expectRejected(MaterialParams p, const std::string& name, const std::string& range) {
   try {
     Material m(p);
     FAIL() << "accepted a bad " << name;
   } catch (const ParameterError& e) {
+    EXPECT_EQ(e.key, name) << e.what();
     EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find(range), std::string::npos) << e.what();
   }
@@ -39,6 +42,8 @@ TEST(Parameters, RejectsEachOutOfRangeValue) {
   expectRejected(p, "tensile_strength", "nan");
   p = concrete(), p.elastic.youngsModulus = INFINITY;
   expectRejected(p, "youngs_modulus", "inf");
+  p = concrete(), p.model = ModelKind::LinearElastic, p.secondBand = SecondBandOption::Orthogonal;
+  expectRejected(p, "second_band", "needs the enriched model");
 }
 
 TEST(Parameters, EffectiveSizeMustExceedTheBandWidth) {
