@@ -13,7 +13,7 @@
 
 #include "mpm/implicit/implicit_system.hpp"
 #include "mpm/implicit/node_ties.hpp"
-#include "mpm/implicit/unknown_reduction.hpp"
+#include "mpm/implicit/platen_and_tie_unknowns.hpp"
 
 namespace ecm::mpm {
 
@@ -49,7 +49,7 @@ struct Attempt {
   Eigen::VectorXd externalStart;         // the same at the step's start
   Eigen::VectorXd startForce;            // the internal forces at the step's start (du = 0), on its geometry
   Eigen::VectorXd direction;             // indirect control: the driven components' reference (mm per unit load factor)
-  // The platens (mpm/implicit/unknown_reduction.hpp): per platen, which degrees of freedom are
+  // The platens (mpm/implicit/platen_and_tie_unknowns.hpp): per platen, which degrees of freedom are
   // prescribed in the step, their increments and (indirect control) their reference; the nodes
   // tied to their neighbours (mpm/implicit/node_ties.hpp); the change of unknowns (none without
   // platens and ties) and the reduced tangent last factorised.

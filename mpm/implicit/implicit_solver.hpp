@@ -19,7 +19,7 @@
 #include "mpm/implicit/implicit_system.hpp"
 #include "mpm/implicit/indirect_control.hpp"
 #include "mpm/implicit/kept_factorization.hpp"
-#include "mpm/implicit/unknown_reduction.hpp"
+#include "mpm/implicit/platen_and_tie_unknowns.hpp"
 
 namespace ecm::mpm {
 
@@ -66,7 +66,7 @@ class ImplicitSolver {
     std::vector<std::int32_t> stencilBases;
     std::vector<std::uint8_t> prescribed;
     Eigen::SparseMatrix<double> factored;
-    // When it is of reduced unknowns (platens, node ties: mpm/implicit/unknown_reduction.hpp), the
+    // When it is of reduced unknowns (platens, node ties: mpm/implicit/platen_and_tie_unknowns.hpp), the
     // reduction's layout it was made for.
     bool factoredReduced = false;
     std::vector<std::array<bool, 3>> platenLayout;

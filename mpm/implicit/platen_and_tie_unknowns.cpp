@@ -1,5 +1,5 @@
-// The step's change of unknowns: platens and tied nodes (mpm/implicit/unknown_reduction.hpp).
-#include "mpm/implicit/unknown_reduction.hpp"
+// The step's change of unknowns: platens and tied nodes (mpm/implicit/platen_and_tie_unknowns.hpp).
+#include "mpm/implicit/platen_and_tie_unknowns.hpp"
 
 namespace ecm::mpm {
 
