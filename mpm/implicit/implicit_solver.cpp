@@ -114,7 +114,7 @@ void ImplicitSolver::restore(const SavedState& s) {
 Eigen::SparseMatrix<double> ImplicitSolver::tangentAtStart(double dt, std::vector<int>* components) {
   Attempt a;
   if (!prepare(dt, nullptr, a)) return {};
-  if (components) *components = unknownComponents(geometry_.dofs, a.reduction ? &*a.reduction : nullptr);
+  if (components) *components = unknownComponents(geometry_.dofs, a.unknownReduction());
   evaluateTrial(setup_, particles_, geometry_, Eigen::VectorXd::Zero(a.du.size()), true, a.snapBack, a.trial);
   return a.trial.tangent;
 }

@@ -28,9 +28,8 @@ class KeptFactorization {
 
   // Whether the factorisation is of the unknowns `key` names (ImplicitSolver::factorKey()).
   bool isOf(long key) const { return key_ >= 0 && key_ == key; }
-  bool any() const { return key_ >= 0; }
   // Factorises k over the unknowns `key` names (false: singular), timed and counted in `report`.
-  // `reduced`: k is over a change of unknowns (platens, ties), which `reduction` is.
+  // `reduction`: the change of unknowns (platens, ties) k is over, or null.
   bool factorize(const Eigen::SparseMatrix<double>& k, long key, const DofMap& dofs, const UnknownReduction* reduction,
                  ImplicitStepReport& report);
   Eigen::VectorXd solve(const Eigen::VectorXd& b, ImplicitStepReport& report);
