@@ -6,7 +6,9 @@
 //     written once the run had begun);
 //   2 bad input: a missing or unreadable file, an unknown key, a wrong type, a value out of
 //     range, a bad command line, an output folder that cannot be used;
-//   3 stopped on request with a checkpoint (ecm-mpm: a signal or --max-steps): resume it.
+//   3 stopped on request with a checkpoint (ecm-mpm: a signal or --max-steps): resume it;
+//   10-20 (ecm-mpm) the run failed, outputs so far kept, one status per failure kind (the table of
+//     kinds, names and statuses: mpm/core/errors.cpp; summary.json's failure.kind names it).
 // Free of CLI11: each main catches CLI::ParseError and passes app.exit(e) to commandLineStatus.
 // Every error message a tool prints has one form, errorLine(): "ecm-mpm: error: REASON" (an
 // input's reason is "FILE:LINE: reason"); CLI11's own messages take it through
@@ -18,6 +20,8 @@
 namespace ecm::io {
 
 inline constexpr int kExitDone = 0, kExitRunFailed = 1, kExitBadInput = 2, kExitStopped = 3;
+// The first and last of ecm-mpm's failure statuses: a script tells a failed run by the range.
+inline constexpr int kExitFirstFailureKind = 10, kExitLastFailureKind = 20;
 
 // The status of a command line CLI11 refused or answered: CLI11's own code (what app.exit(e)
 // returns, after printing the message on stderr or the help on stdout) is 0 for --help and

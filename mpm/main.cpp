@@ -2,9 +2,10 @@
 //   ecm-mpm SCENE.yaml [-o|--out DIR] [--threads N] [--no-vtu] [--no-plot] [--quiet] [--max-steps N]
 //   ecm-mpm SCENE.yaml --restart DIR [...]      continue the run of DIR from DIR/checkpoint.bin
 // SIGINT / SIGTERM stop the run after the current step with a checkpoint (a second one kills it).
-// Exit status (io/cli_exit.hpp): 0 completed, 1 the run failed (see summary.json), 2 bad input
-// (command line included), output folder or checkpoint, 3 stopped before the end with a
-// checkpoint (signal or --max-steps): resume it.
+// Exit status (io/cli_exit.hpp): 0 completed, 2 bad input (command line included), output folder
+// or checkpoint, 3 stopped before the end with a checkpoint (signal or --max-steps): resume it,
+// 10-20 the run failed, one status per failure kind (mpm/core/errors.hpp; summary.json's
+// failure.kind names it).
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
@@ -134,11 +135,11 @@ int main(int argc, char** argv) {
       return ecm::io::kExitStopped;
     }
     if (!r.completed) {
-      ecm::io::printError("ecm-mpm", r.error);
+      ecm::io::printError("ecm-mpm", r.message());
       if (!r.checkpoint.empty())
         std::fprintf(stderr, "the last checkpoint is %s (resume with: %s)\n", r.checkpoint.string().c_str(),
                      options.resumeCommand.c_str());
-      return ecm::io::kExitRunFailed;
+      return r.failure ? ecm::mpm::exitStatusOf(r.failure->kind) : ecm::io::kExitRunFailed;
     }
     return ecm::io::kExitDone;
   } catch (const ecm::io::InputError& e) {

@@ -36,6 +36,19 @@ void writeCrackPaths(const CrackPaths& paths, const std::filesystem::path& path)
   });
 }
 
+// summary.json's "failure": the kind, ecm-mpm's exit status, where and when (docs/tools.md,
+// "When a run fails").
+nlohmann::json failureJson(const RunFailure& f) {
+  nlohmann::json j = {{"kind", toString(f.kind)}, {"exit_status", exitStatusOf(f.kind)}, {"step", f.step}};
+  if (f.particle) j["particle"] = *f.particle;
+  if (f.position) j["position_mm"] = {(*f.position)[0], (*f.position)[1]};
+  if (f.kind == FailureKind::MaterialFailure || f.kind == FailureKind::SnapBack) j["material_status"] = toString(f.materialStatus);
+  if (f.residual != 0.0) j["residual"] = f.residual;
+  if (f.likelyLimitPoint) j["likely_limit_point"] = true;
+  if (!f.file.empty()) j["file"] = f.file.string();
+  return j;
+}
+
 using WallClock = std::chrono::steady_clock;
 double secondsSince(WallClock::time_point t) { return std::chrono::duration<double>(WallClock::now() - t).count(); }
 
@@ -76,7 +89,7 @@ class RunLoop {
       stepLoop();
       result_.completed = !result_.stopped;
     } catch (const SimulationError& e) {
-      result_.error = e.what();
+      result_.failure = e.failure();
       try {
         if (stepper_.failureKeepsConsistentState())
           checkpoint();  // the last consistent state, to continue from or look at
@@ -89,7 +102,8 @@ class RunLoop {
       // A file could not be written (full disk?): what is on disk stays readable (history.csv ends
       // with its last whole row, the other files are replaced atomically). Nothing more is written
       // but, if it can be, the summary.
-      result_.error = std::string(e.what()) + " (at step " + std::to_string(stepper_.steps()) + ")";
+      result_.failure = outputFailureOf(std::string(e.what()) + " (at step " + std::to_string(stepper_.steps()) + ")",
+                                      stepper_.steps(), e.path);
       outputFailed_ = true;
     }
     if (progress_) progress_->finish();
@@ -236,7 +250,10 @@ class RunLoop {
   }
   // What goes wrong from here on is added to the result; what was written stays readable.
   void outputFailure(const io::OutputError& o) {
-    result_.error = result_.error.empty() ? o.what() : result_.error + "; then: " + o.what();
+    if (result_.failure)  // the first failure keeps its kind
+      result_.failure->message += std::string("; then: ") + o.what();
+    else
+      result_.failure = outputFailureOf(o.what(), stepper_.steps(), o.path);
     result_.completed = result_.stopped = false;
     outputFailed_ = true;
   }
@@ -337,7 +354,10 @@ class RunLoop {
                         {"peak_of_rows_N", watch_.peak}};
       if (r.endedByStopWhen) j["stop_when"]["load_at_stop_N"] = r.stopLoad;
     }
-    if (!r.completed && !r.stopped) j["error"] = r.error;
+    if (r.failure) {
+      j["error"] = r.failure->message;
+      j["failure"] = failureJson(*r.failure);
+    }
     if (r.restartedFrom >= 0) j["restarted_from_step"] = r.restartedFrom;
     if (!r.checkpoint.empty()) {
       j["checkpoint"] = r.checkpoint.string();

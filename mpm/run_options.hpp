@@ -5,7 +5,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
+
+#include "mpm/core/errors.hpp"
 
 namespace ecm::mpm {
 
@@ -31,7 +34,7 @@ struct RunOptions {
 struct RunResult {
   bool completed = false;
   bool stopped = false;    // stopped on request (stop flag, maxSteps) after writing a checkpoint
-  std::string error;       // why the run failed (a simulation failure or a file that could not be written)
+  std::optional<RunFailure> failure;  // why the run failed (a simulation failure or a file that could not be written)
   long steps = 0;          // the step count reached (from t = 0)
   long restartedFrom = -1; // the step of the checkpoint a restart continued from
   std::size_t particles = 0;
@@ -41,6 +44,9 @@ struct RunResult {
   double wallTime = 0.0;   // s, of this run (a restart counts from its own start)
   long checkpoints = 0;    // written by this run
   std::filesystem::path checkpoint;  // the checkpoint left in the folder (empty: none)
+
+  // The failure's message ("" when the run did not fail): for people, never to be parsed.
+  std::string message() const { return failure ? failure->message : std::string(); }
 };
 
 }  // namespace ecm::mpm

@@ -49,6 +49,13 @@ sceneOf() {
   echo "$out/scenes/rve-$1.yaml"
 }
 
+# ", KIND" of a failed run's summary.json (failure.kind; docs/tools.md, "When a run fails"), or nothing.
+failureKind() {
+  local k
+  k=$(grep -m1 -o '"kind": *"[a-z_]*"' "$1/summary.json" 2>/dev/null | sed 's/.*"\([a-z_]*\)"$/\1/') || true
+  [[ -n $k ]] && echo ", $k"
+  return 0
+}
 failed=()  # the runs of this call that did not complete (listed at the end; the exit status is 1)
 for m in "${runs[@]}"; do
   scene=$(sceneOf "$m")
@@ -57,12 +64,12 @@ for m in "${runs[@]}"; do
   $bin "$scene" --out "$out/$m" --no-vtu --threads "$threads" -q
   rc=$?
   case $rc in  # ecm-mpm's exit status (README, "Exit status")
-    0 | 1) ;;  # completed, or failed with its outputs kept: in the table with its status
+    0 | 1 | 1[0-9] | 20) ;;  # completed, or failed with its outputs kept (10-20: the failure's kind): in the table with its status
     2) echo "error: ecm-mpm could not run $scene (bad input, status 2)" >&2 ;;
     3) echo "warning: ecm-mpm stopped $scene with a checkpoint in $out/$m (resume with --restart)" >&2 ;;
     *) echo "error: ecm-mpm ended $scene with status $rc" >&2 ;;
   esac
-  [[ $rc == 0 ]] || failed+=("$m (exit $rc: $out/$m/summary.json)")
+  [[ $rc == 0 ]] || failed+=("$m (exit $rc$(failureKind "$out/$m"): $out/$m/summary.json)")
 done
 
 col() { head -1 "$1" | tr ',' '\n' | grep -nx "$2" | cut -d: -f1; }

@@ -123,6 +123,13 @@ variant() {
   echo "$out/scenes/$name.yaml"
 }
 
+# ", KIND" of a failed run's summary.json (failure.kind; docs/tools.md, "When a run fails"), or nothing.
+failureKind() {
+  local k
+  k=$(grep -m1 -o '"kind": *"[a-z_]*"' "$1/summary.json" 2>/dev/null | sed 's/.*"\([a-z_]*\)"$/\1/') || true
+  [[ -n $k ]] && echo ", $k"
+  return 0
+}
 failed=()
 for r in "${runs[@]}"; do
   s=${scene[$r]}
@@ -142,7 +149,7 @@ for r in "${runs[@]}"; do
     [[ $code == 0 ]] && failed+=("$r (listed in VALIDATE_KNOWN_FAILURES, but it completed: take it off the list)") \
                      || echo "$r: a known failure (VALIDATE_KNOWN_FAILURES)" >&2
   elif [[ $code != 0 ]]; then
-    failed+=("$r (exit $code: $out/$r/summary.json)")
+    failed+=("$r (exit $code$(failureKind "$out/$r"): $out/$r/summary.json)")
   fi
 done
 

@@ -20,7 +20,7 @@ void checkDampingWork(const ExplicitSolver& solver, double initial) {
       << " N mm (external work " << e.externalWork << ", initial " << initial
       << "): a step went unstable (the fastest particle, " << fastest << ", at (" << p.position[fastest][0] << ", "
       << p.position[fastest][1] << ") mm, moves at " << p.velocity[fastest].norm() << " mm/s)";
-  throw SimulationError(FailureKind::EnergyImbalance, solver.step(), fastest, p.position[fastest], msg.str());
+  throw SimulationError(FailureKind::DampingWork, solver.step(), fastest, p.position[fastest], msg.str());
 }
 
 }  // namespace ecm::mpm

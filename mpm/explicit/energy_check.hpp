@@ -25,7 +25,7 @@ inline bool dampingOutrunsInput(const RunTotals& t, double initial) {
   return std::abs(t.damping) > kDampingWorkLimit * std::max(t.externalWork + initial, 0.0) && t.damping != 0.0;
 }
 
-// Throws SimulationError (EnergyImbalance) where dampingOutrunsInput, naming the step, the time,
+// Throws SimulationError (DampingWork) where dampingOutrunsInput, naming the step, the time,
 // both energies and the fastest particle.
 void checkDampingWork(const ExplicitSolver& solver, double initial);
 

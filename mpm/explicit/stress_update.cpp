@@ -180,6 +180,7 @@ void updateStresses(const StepSetup& setup, long step, Particles& p, RunTotals& 
       kind = FailureKind::NotFinite;
       msg << "non-finite stress";
     } else {
+      if (failure.result.status == UpdateStatus::SnapBack) kind = FailureKind::SnapBack;
       msg << setup.materials[p.material[i]].explain(failure.result);
       // The full state, to reproduce the update outside the run (material/two_phase_point.hpp).
       msg.precision(17);

@@ -135,7 +135,7 @@ void ImplicitSolver::checkBalance() const {
   msg << "implicit step " << steps_ << " (t = " << time_ << " s, load factor " << lambda_ << "): the external work "
       << totals_.externalWork << " N mm and the internal work " << internalWork_ << " N mm differ by " << gap / scale
       << " of the work (allowed " << kBalanceTolerance << "): the steps are not in equilibrium";
-  throw SimulationError(FailureKind::MaterialFailure, steps_, 0, Vec2::Zero(), msg.str(), UpdateStatus::Converged, gap / scale);
+  throw SimulationError(FailureKind::WorkImbalance, steps_, std::nullopt, Vec2::Zero(), msg.str(), UpdateStatus::Converged, gap / scale);
 }
 
 }  // namespace ecm::mpm

@@ -13,6 +13,24 @@
 
 namespace ecm::mpm {
 
+namespace {
+
+// The run's failure kind of an attempt that failed on the smallest piece.
+FailureKind failureKindOf(NewtonFailure reason, UpdateStatus material) {
+  switch (reason) {
+    case NewtonFailure::LeftGrid: return FailureKind::LeftGrid;
+    case NewtonFailure::Material: return material == UpdateStatus::SnapBack ? FailureKind::SnapBack : FailureKind::MaterialFailure;
+    case NewtonFailure::Singular: return FailureKind::SingularTangent;
+    case NewtonFailure::OnsetOvershoot: return FailureKind::OnsetOvershoot;
+    case NewtonFailure::ControlBlind: return FailureKind::ControlBlind;
+    case NewtonFailure::NotConverged:
+    case NewtonFailure::None: break;
+  }
+  return FailureKind::NewtonNotConverged;
+}
+
+}  // namespace
+
 bool ImplicitSolver::solvePiece(const IndirectControl* control, double piece, Attempt& a) {
   if (!prepare(control ? 0.0 : piece, control, a)) return false;
   const StepContext context{setup_, particles_, geometry_, settings_, factors_, factorKey()};
@@ -118,13 +136,17 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
     // has the prescribed displacement on the softening branch (docs/implicit.md).
     const bool cracked = std::any_of(particles_.band.begin(), particles_.band.end(), [](std::int32_t b) { return b >= 0; }) ||
                          std::any_of(a.trial.band.begin(), a.trial.band.end(), [](const auto& b) { return b.has_value(); });
-    if (!control && cracked && (a.reason == NewtonFailure::NotConverged || a.reason == NewtonFailure::Singular))
+    const bool likelyLimitPoint = !control && cracked && (a.reason == NewtonFailure::NotConverged || a.reason == NewtonFailure::Singular);
+    if (likelyLimitPoint)
       msg << ". The structure has most likely passed a limit point (a structural snap-back: past its peak the load and "
              "the displacement fall together), which displacement control cannot follow; indirect control "
              "(solver: {control: {indirect: ...}}, docs/implicit.md) traces it";
-    throw SimulationError(a.reason == NewtonFailure::LeftGrid ? FailureKind::LeftGrid : FailureKind::MaterialFailure,
-                          steps_ + 1, a.failedParticle == SIZE_MAX ? 0 : a.failedParticle, where, msg.str(),
-                          a.failedStatus, a.failedResidual);
+    const std::optional<std::size_t> particle =
+        a.failedParticle == SIZE_MAX ? std::nullopt : std::optional<std::size_t>(a.failedParticle);
+    SimulationError e(failureKindOf(a.reason, a.failedStatus), steps_ + 1, particle, where, msg.str(), a.failedStatus,
+                      a.failedResidual);
+    e.likelyLimitPoint = likelyLimitPoint;
+    throw e;
   }
 }
 

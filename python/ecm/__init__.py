@@ -25,11 +25,13 @@ from ._ecm import (STATUS, BandState, CalibrationError, CheckpointError, InputEr
                    softening_modulus)
 from . import _ecm
 from .mpm_output import MpmOutput, read_mpm_output
+from . import failures
+from .failures import *  # noqa: F401,F403 (RunFailed and one class per failure kind)
 
 __all__ = ["STATUS", "BandState", "CalibrationError", "CheckpointError", "InputError", "Material", "OutputError",
            "ParameterError", "PointArray", "PointState", "UpdateResult", "__version__", "fracture_energy",
            "softening_modulus", "PointRun", "run_point", "run_point_3d", "snapback_study", "calibrate", "fit_softening",
-           "run_scene", "load_scene", "MpmOutput", "read_mpm_output"]
+           "run_scene", "load_scene", "MpmOutput", "read_mpm_output"] + failures.__all__
 
 
 def _path_or_dict(x):
@@ -105,16 +107,24 @@ def fit_softening(w, traction, out=None, **keys):
 
 
 def run_scene(scene, out, threads=0, preset=None, snapshots=True, plot=True, restart=False, max_steps=0,
-              progress=None):
+              progress=None, check=True):
     """Runs an ecm-mpm scene (a YAML file's path or a dict) into the folder `out`, as ecm-mpm does.
     progress(time, end_time, step) is called at every history row (time and end_time in s; the
     pseudo-time of an implicit scene); returning False (or raising, or Ctrl-C) stops the run with a
     checkpoint (resume with restart=True). A progress that is not callable is refused before the
     run (TypeError). The GIL is released while the run goes on. Returns a dict of the same keys
     for every scheme: status ("completed", "stopped" or "failed"), completed, stopped, error (the
-    failure's message; None unless failed), steps, particles, peak_load_N (N), wall_time_s (s),
-    checkpoint (path or None); read the folder with read_mpm_output(out)."""
+    failure's message; None unless failed), failure (None unless failed: summary.json's failure,
+    kind and where, with the message), steps, particles, peak_load_N (N), wall_time_s (s),
+    checkpoint (path or None); read the folder with read_mpm_output(out).
+
+    A run that fails raises its kind's exception (a RunFailed: ecm.NewtonNotConvergedError,
+    ecm.LeftGridError, ...; ecm.failures lists them) after its outputs are closed, unless
+    check=False, which returns the dict with status "failed" instead."""
     if progress is not None and not callable(progress):
         raise TypeError(f"progress must be callable as progress(time, end_time, step) or None, got {type(progress).__name__}")
-    return _ecm._run_scene(_path_or_dict(scene), os.fspath(out), threads, preset, snapshots, plot, restart, max_steps,
-                           progress)
+    result = _ecm._run_scene(_path_or_dict(scene), os.fspath(out), threads, preset, snapshots, plot, restart, max_steps,
+                             progress)
+    if check:
+        failures.raise_for(result, os.fspath(out))
+    return result

@@ -69,7 +69,7 @@ def run_task(task):
             before = resource.getrusage(resource.RUSAGE_SELF)
             error = None
             try:
-                run_scene(scene, out, threads=task["threads"], snapshots=False, plot=False)
+                run_scene(scene, out, threads=task["threads"], snapshots=False, plot=False, check=False)
             except Exception as e:  # an invalid scene (e.g. seeding): the run fails, the study goes on
                 error = str(e)
                 with open(os.path.join(out, "error.txt"), "w", encoding="utf-8") as f:

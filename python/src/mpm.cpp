@@ -18,7 +18,37 @@
 
 namespace ecm::python {
 
+namespace {
+
+// A failed run's failure (mpm/core/errors.hpp) as the dict ecm.run_scene turns into the kind's
+// exception (python/ecm/failures.py): the same keys as summary.json's "failure", plus the message.
+py::dict failureDict(const mpm::RunFailure& f) {
+  py::dict d;
+  d["kind"] = std::string(mpm::toString(f.kind));
+  d["exit_status"] = mpm::exitStatusOf(f.kind);
+  d["message"] = f.message;
+  d["step"] = f.step;
+  d["particle"] = f.particle ? py::cast(*f.particle) : py::object(py::none());
+  d["position_mm"] = f.position ? py::object(py::make_tuple((*f.position)[0], (*f.position)[1])) : py::object(py::none());
+  d["material_status"] = f.kind == mpm::FailureKind::MaterialFailure || f.kind == mpm::FailureKind::SnapBack
+                             ? py::object(py::str(toString(f.materialStatus)))
+                             : py::object(py::none());
+  d["residual"] = f.residual;
+  d["likely_limit_point"] = f.likelyLimitPoint;
+  d["file"] = f.file.empty() ? py::object(py::none()) : py::cast(f.file.string());
+  return d;
+}
+
+}  // namespace
+
 void bindMpm(py::module_& m) {
+  // The failure kinds' table (name, ecm-mpm's exit status, meaning), for ecm.failures.
+  m.def("_failure_kinds", [] {
+    py::list kinds;
+    for (const mpm::FailureKindInfo& k : mpm::kFailureKinds)
+      kinds.append(py::make_tuple(std::string(k.name), k.exitStatus, std::string(k.meaning)));
+    return kinds;
+  });
   m.def(
       "_run_scene",
       [](const py::object& spec, const std::filesystem::path& out, int threads, const std::optional<std::string>& preset,
@@ -78,7 +108,8 @@ void bindMpm(py::module_& m) {
         result["status"] = r.completed ? "completed" : (r.stopped ? "stopped" : "failed");
         result["completed"] = r.completed;
         result["stopped"] = r.stopped;
-        result["error"] = r.completed || r.stopped ? py::object(py::none()) : py::cast(r.error);
+        result["error"] = r.failure ? py::cast(r.failure->message) : py::object(py::none());
+        result["failure"] = r.failure ? py::object(failureDict(*r.failure)) : py::object(py::none());
         result["steps"] = r.steps;
         result["particles"] = r.particles;
         result["peak_load_N"] = r.peakLoad;

@@ -66,7 +66,7 @@ def run_ccx(scene, ccx, to, folder, increment=0.01, element="C3D8"):
 def run_mpm(scene, to, folder):
     s = ecm.load_scene(scene)
     s["end_time"] = to
-    result = ecm.run_scene(s, folder, snapshots=False)
+    result = ecm.run_scene(s, folder, snapshots=False, check=False)  # a failed run is compared as far as it got
     with open(folder / "history.csv") as f:
         rows = list(csv.DictReader(f))
     with open(folder / "particles_final.csv") as f:

@@ -51,7 +51,7 @@ inline double checkBeam(const std::string& scenePath, double cell, double tailSh
   const Scene scene = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / scenePath);
   ecm::test::TempDir dir;
   const RunResult r = runScene(scene, quietRun(dir.path() / "out"));
-  EXPECT_TRUE(r.completed) << r.error;
+  EXPECT_TRUE(r.completed) << r.message();
   const auto history = historyRows(dir.path() / "out" / "history.csv");
   BeamCurve run, energy;
   for (const auto& row : history) {

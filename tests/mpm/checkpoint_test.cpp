@@ -183,14 +183,14 @@ TEST(Checkpoint, StopAndResumeGivesTheSameOutputsBitwise) {
   TempDir tmp;
   const Scene scene = crackingBlock();
   const RunResult whole = runScene(scene, options(tmp.path() / "whole"));
-  ASSERT_TRUE(whole.completed) << whole.error;
+  ASSERT_TRUE(whole.completed) << whole.message();
   ASSERT_GT(whole.steps, 250);
 
   RunOptions first = options(tmp.path() / "split");
   first.maxSteps = 137;  // between two output rows, after the onset of cracking
   const RunResult stopped = runScene(scene, first);
   EXPECT_FALSE(stopped.completed);
-  ASSERT_TRUE(stopped.stopped) << stopped.error;
+  ASSERT_TRUE(stopped.stopped) << stopped.message();
   EXPECT_EQ(stopped.steps, 137);
   EXPECT_EQ(stopped.checkpoint, tmp.path() / "split" / "checkpoint.bin");
   const auto summary = nlohmann::json::parse(readFile(tmp.path() / "split" / "summary.json"));
@@ -200,7 +200,7 @@ TEST(Checkpoint, StopAndResumeGivesTheSameOutputsBitwise) {
   RunOptions second = options(tmp.path() / "split");
   second.restart = true;
   const RunResult resumed = runScene(scene, second);
-  ASSERT_TRUE(resumed.completed) << resumed.error;
+  ASSERT_TRUE(resumed.completed) << resumed.message();
   EXPECT_EQ(resumed.restartedFrom, 137);
   EXPECT_EQ(resumed.steps, whole.steps);
   EXPECT_EQ(resumed.peakLoad, whole.peakLoad);
@@ -220,7 +220,7 @@ TEST(Checkpoint, StopAndResumeWithTrackedCrackPathsGivesTheSameOutputsBitwise) {
   Scene scene = crackingBlock();
   scene.solver.crackPath = CrackPathRule::Tracked;
   const RunResult whole = runScene(scene, options(tmp.path() / "whole"));
-  ASSERT_TRUE(whole.completed) << whole.error;
+  ASSERT_TRUE(whole.completed) << whole.message();
   ASSERT_TRUE(fs::exists(tmp.path() / "whole" / "crack_paths.csv"));
   RunOptions first = options(tmp.path() / "split");
   first.maxSteps = 137;
@@ -228,7 +228,7 @@ TEST(Checkpoint, StopAndResumeWithTrackedCrackPathsGivesTheSameOutputsBitwise) {
   RunOptions second = options(tmp.path() / "split");
   second.restart = true;
   const RunResult resumed = runScene(scene, second);
-  ASSERT_TRUE(resumed.completed) << resumed.error;
+  ASSERT_TRUE(resumed.completed) << resumed.message();
   fs::remove(tmp.path() / "whole" / "summary.json");
   expectSameOutputs(tmp.path() / "whole", tmp.path() / "split");
 }
@@ -241,7 +241,7 @@ TEST(Checkpoint, StopAndResumeKeepsTheSnapshotRows) {
   Scene scene = crackingBlock();
   scene.snapshotEvery = 4;
   const RunResult whole = runScene(scene, options(tmp.path() / "whole"));
-  ASSERT_TRUE(whole.completed) << whole.error;
+  ASSERT_TRUE(whole.completed) << whole.message();
   RunOptions first = options(tmp.path() / "split");
   first.maxSteps = 137;  // between output rows 5 and 6
   ASSERT_TRUE(runScene(scene, first).stopped);
@@ -267,7 +267,7 @@ TEST(Checkpoint, StopFlagStopsWithACheckpointAndTheResumeMatches) {
   Scene scene = crackingBlock();
   scene.endTime = 4e-5;
   const RunResult whole = runScene(scene, options(tmp.path() / "whole"));
-  ASSERT_TRUE(whole.completed) << whole.error;
+  ASSERT_TRUE(whole.completed) << whole.message();
 
   std::atomic<bool> stop{true};
   RunOptions first = options(tmp.path() / "split");
@@ -293,7 +293,7 @@ TEST(Checkpoint, ResumeCutsRowsWrittenAfterTheCheckpoint) {
   TempDir tmp;
   Scene scene = crackingBlock();
   const RunResult whole = runScene(scene, options(tmp.path() / "whole"));
-  ASSERT_TRUE(whole.completed) << whole.error;
+  ASSERT_TRUE(whole.completed) << whole.message();
 
   scene.checkpoint.everySteps = 60;
   const fs::path dir = tmp.path() / "crash";
@@ -310,7 +310,7 @@ TEST(Checkpoint, ResumeCutsRowsWrittenAfterTheCheckpoint) {
   fs::copy_file(tmp.path() / "step120.bin", dir / "checkpoint.bin", fs::copy_options::overwrite_existing);
   o.maxSteps = 0;
   const RunResult resumed = runScene(scene, o);  // as if the run had died just before step 230
-  ASSERT_TRUE(resumed.completed) << resumed.error;
+  ASSERT_TRUE(resumed.completed) << resumed.message();
   EXPECT_EQ(resumed.restartedFrom, 120);
   EXPECT_GT(rowsAt230, io::readCsv(tmp.path() / "whole" / "history.csv").rows.size() / 2);
   fs::remove(tmp.path() / "whole" / "summary.json");
@@ -452,7 +452,9 @@ TEST(Checkpoint, FailedWriteKeepsThePreviousCheckpointUsable) {
   }
   EXPECT_FALSE(failed.completed);
   EXPECT_FALSE(failed.stopped);
-  expectContains(failed.error, (dir / "checkpoint.bin").string());
+  ASSERT_TRUE(failed.failure);
+  EXPECT_EQ(failed.failure->kind, FailureKind::Output);
+  EXPECT_EQ(failed.failure->file, dir / "checkpoint.bin") << failed.message();
   EXPECT_EQ(bytesOf(dir / "checkpoint.bin"), before);
   EXPECT_FALSE(fs::exists(dir / "checkpoint.bin.tmp"));
   const auto summary = nlohmann::json::parse(readFile(dir / "summary.json"));
@@ -476,8 +478,10 @@ TEST(RunOutput, FullDiskMidRunIsReportedAndTheHistoryEndsWithAWholeRow) {
     r = runScene(crackingBlock(), o);
   }
   EXPECT_FALSE(r.completed);
-  expectContains(r.error, (dir / "history.csv").string());
-  expectContains(r.error, "File too large");
+  ASSERT_TRUE(r.failure);
+  EXPECT_EQ(r.failure->kind, FailureKind::Output);
+  EXPECT_EQ(r.failure->file, dir / "history.csv") << r.message();
+  EXPECT_EQ(nlohmann::json::parse(readFile(dir / "summary.json"))["failure"]["kind"], "output");
   const std::string history = bytesOf(dir / "history.csv");
   EXPECT_LE(history.size(), 2500u);
   ASSERT_FALSE(history.empty());

@@ -9,6 +9,8 @@
 
 #include "../io/temp_dir.hpp"
 #include "../run_tool.hpp"
+#include "io/cli_exit.hpp"
+#include "mpm/core/errors.hpp"
 
 namespace ecm::mpm::test {
 namespace {
@@ -76,15 +78,19 @@ TEST(EcmMpm, AnOutputFolderThatCannotBeUsedIsBadInput) {
   expectContains(r.err, "a-file");
 }
 
-TEST(EcmMpm, AFailedRunExitsOneWithItsOutputs) {
+// The status names the failure's kind (io/cli_exit.hpp, mpm/core/errors.cpp): 10, left_grid.
+TEST(EcmMpm, AFailedRunExitsWithItsKindsStatusAndKeepsItsOutputs) {
   TempDir tmp;
   const fs::path scene = tmp.write("thrown.yaml", kThrownSquare);
   const fs::path out = tmp.path() / "out";
   const ToolRun r = mpm(shellQuoted(scene) + " -q --no-vtu --no-plot --out " + shellQuoted(out), tmp);
-  EXPECT_EQ(r.status, ecm::io::kExitRunFailed) << r.err;
-  expectContains(r.err, "left the grid");
+  EXPECT_EQ(r.status, 10) << r.err;
+  EXPECT_EQ(r.status, ecm::mpm::exitStatusOf(ecm::mpm::FailureKind::LeftGrid));
+  expectContains(r.err, "ecm-mpm: error: ");  // the message, for people
   const auto j = nlohmann::json::parse(readFile(out / "summary.json"));
   EXPECT_EQ(j["status"], "failed");
+  EXPECT_EQ(j["failure"]["kind"], "left_grid");
+  EXPECT_EQ(j["failure"]["exit_status"], r.status);
   EXPECT_TRUE(fs::exists(out / "history.csv"));
 }
 

@@ -45,7 +45,9 @@ TEST(EnergyCheck, AnUnstableStepStopsTheRunAtItsRow) {
   o.threads = 1;
   const RunResult r = runScene(s, o);
   ASSERT_FALSE(r.completed);
-  EXPECT_NE(r.error.find("energy from nowhere at step"), std::string::npos) << r.error;
+  ASSERT_TRUE(r.failure);
+  EXPECT_EQ(r.failure->kind, FailureKind::DampingWork) << r.message();
+  EXPECT_EQ(r.failure->step, r.steps);
   EXPECT_LT(r.steps, 22);
   const io::CsvTable h = io::readCsv(o.outputDir / "history.csv");
   EXPECT_EQ(static_cast<long>(h.rows.back()[1]), r.steps);  // the failing step's row is kept

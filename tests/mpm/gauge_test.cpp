@@ -44,7 +44,7 @@ TEST(Gauge, AnExtensometerAcrossAUniformlyStrainedBlockReadsEpsTimesItsLengthImp
   const Scene scene = readScene(io::parseYaml(std::string(kBlock) + "solver: {scheme: implicit_static, load_step: 1}\n", "b.yaml"));
   ecm::test::TempDir dir;
   const RunResult r = runScene(scene, quietRun(dir.path() / "out"));
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   const auto row = lastRow(dir.path() / "out" / "history.csv");
   EXPECT_NEAR(row.at("extensometer_mm"), 5e-3, 1e-12);
   EXPECT_NEAR(row.at("upper_mm"), 7.5e-3, 1e-12);
@@ -79,7 +79,7 @@ TEST(Gauge, AnExtensometerInAnAffineFieldReadsEpsTimesItsLengthExplicit) {
   s.validate();
   ecm::test::TempDir dir;
   const RunResult r = runScene(s, quietRun(dir.path() / "out"));
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   const auto row = lastRow(dir.path() / "out" / "history.csv");
   // The particles move with the field: y(t) = y0 exp(rate t) to the time step's order; the strain
   // from the displacement the run reports at its end time t is exp(rate t) - 1.
@@ -96,7 +96,7 @@ TEST(Gauge, StopWhenEndsTheRunWhereTheGaugeReachesItsValue) {
                                               "stop_when: {gauge: extensometer, reaches: 2e-3}\n", "b.yaml"));
   ecm::test::TempDir dir;
   const RunResult r = runScene(scene, quietRun(dir.path() / "out"));
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   EXPECT_TRUE(r.endedByStopWhen);
   const auto row = lastRow(dir.path() / "out" / "history.csv");
   EXPECT_GE(row.at("extensometer_mm"), 2e-3 * (1.0 - 1e-12));
@@ -115,7 +115,7 @@ TEST(Gauge, IndirectControlOnAGaugeDrivesItsReading) {
                                                      "gauge: extensometer, step: 1e-3, until: 4e-3}}}\n", "b.yaml"));
   ecm::test::TempDir dir;
   const RunResult r = runScene(scene, quietRun(dir.path() / "out"));
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   const auto row = lastRow(dir.path() / "out" / "history.csv");
   EXPECT_NEAR(row.at("extensometer_mm"), 4e-3, 1e-9);
   EXPECT_NEAR(row.at("top_uy_mm"), 8e-3, 1e-3 * 8e-3);

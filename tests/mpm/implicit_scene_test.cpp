@@ -42,7 +42,7 @@ TEST(ImplicitScene, TheShippedBarRunsThroughItsPeakWithItsEnergyBalanced) {
   options.progress = false;
   options.plot = false;
   const RunResult r = runScene(scene, options);
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   EXPECT_EQ(r.steps, 200);
   // The peak: the weak row's strength times the bar's section (20 mm x 1 mm), to 1e-3.
   EXPECT_NEAR(r.peakLoad, 2.9 * 20.0, 1e-3 * 2.9 * 20.0);
@@ -120,17 +120,17 @@ std::string expectRestartIsBitwise(const Scene& scene, long stopAt, long end) {
   options.threads = 1;
   options.maxSteps = end;
   const RunResult whole = runScene(scene, options);
-  EXPECT_TRUE(whole.stopped) << whole.error;
+  EXPECT_TRUE(whole.stopped) << whole.message();
   options.outputDir = dir.path() / "parts";
   options.maxSteps = stopAt;
   const RunResult first = runScene(scene, options);
-  EXPECT_TRUE(first.stopped) << first.error;
+  EXPECT_TRUE(first.stopped) << first.message();
   EXPECT_TRUE(std::filesystem::exists(options.outputDir / "checkpoint.bin"));
   options.restart = true;
   options.threads = 2;
   options.maxSteps = end;
   const RunResult second = runScene(scene, options);
-  EXPECT_TRUE(second.stopped) << second.error;
+  EXPECT_TRUE(second.stopped) << second.message();
   EXPECT_EQ(second.restartedFrom, stopAt);
   EXPECT_EQ(second.steps, end);
   EXPECT_EQ(fileText(dir.path() / "whole" / "history.csv"), fileText(dir.path() / "parts" / "history.csv"));
@@ -200,7 +200,7 @@ TEST(ImplicitScene, AStalledNewtonIsKeptBelowTheAcceptToleranceAndStopsTheRunAbo
     const Scene scene = readScene(io::parseYaml(replaced(bar, "tolerance: 1e-6 ", "tolerance: 1e-16\n  accept_tolerance: 1e-9"), "bar.yaml"));
     options.outputDir = dir.path() / "kept";
     const RunResult r = runScene(scene, options);
-    EXPECT_TRUE(r.completed) << r.error;
+    EXPECT_TRUE(r.completed) << r.message();
     const std::string summary = fileText(options.outputDir / "summary.json");
     EXPECT_GE(r.steps, 20);
     expectContains(summary, "\"relaxed_steps\": " + std::to_string(r.steps) + ",");
@@ -210,8 +210,11 @@ TEST(ImplicitScene, AStalledNewtonIsKeptBelowTheAcceptToleranceAndStopsTheRunAbo
     options.outputDir = dir.path() / "stopped";
     const RunResult r = runScene(scene, options);
     EXPECT_FALSE(r.completed);
-    expectContains(r.error, "implicit step 1 ");
-    expectContains(r.error, "Newton did not converge");
+    ASSERT_TRUE(r.failure);
+    EXPECT_EQ(r.failure->kind, FailureKind::NewtonNotConverged);
+    EXPECT_EQ(r.failure->step, 1);
+    EXPECT_FALSE(r.failure->likelyLimitPoint);  // nothing cracked: no structural limit point
+    EXPECT_EQ(nlohmann::json::parse(fileText(options.outputDir / "summary.json"))["failure"]["kind"], "newton_not_converged");
     EXPECT_TRUE(std::filesystem::exists(options.outputDir / "history.csv"));
   }
 }
@@ -226,7 +229,7 @@ TEST(ImplicitScene, AStalledNewtonProperIsGivenUpEarly) {
   RunOptions options = quietRun(dir.path() / "kept");
   const Scene scene = readScene(io::parseYaml(replaced(bar, "tolerance: 1e-6 ", "tolerance: 1e-16\n  accept_tolerance: 1e-9"), "bar.yaml"));
   const RunResult r = runScene(scene, options);
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   const std::string summary = fileText(options.outputDir / "summary.json");
   expectContains(summary, "\"relaxed_steps\": " + std::to_string(r.steps) + ",");
   const auto at = summary.find("\"most_newton_iterations_in_a_step\": ");
@@ -246,7 +249,7 @@ TEST(ImplicitScene, VtuSnapshotsFollowTheOutputIntervalInTheProgressUnit) {
   options.progress = false;
   options.plot = false;
   const RunResult r = runScene(scene, options);
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   for (int k = 0; k < 5; ++k) EXPECT_TRUE(std::filesystem::exists(options.outputDir / ("particles_0000" + std::to_string(k) + ".vtu"))) << k;
   EXPECT_FALSE(std::filesystem::exists(options.outputDir / "particles_00005.vtu"));
   expectContains(fileText(options.outputDir / "particles.pvd"), "timestep=\"0.002\"");
@@ -269,7 +272,7 @@ TEST(ImplicitScene, SnapBackReleaseGoesOnAndStopEndsTheRunAtThePoint) {
     const Scene scene = readScene(io::parseYaml(weak, "bar.yaml"));
     ASSERT_EQ(scene.solver.snapBack, SnapBackPolicy::Release);
     const RunResult r = runScene(scene, quietRun(dir.path() / "release"));
-    ASSERT_TRUE(r.completed) << r.error;
+    ASSERT_TRUE(r.completed) << r.message();
     const auto j = nlohmann::json::parse(fileText(dir.path() / "release" / "summary.json"));
     EXPECT_GT(j["snap_back_releases"].get<long>(), 0);
     EXPECT_EQ(j["halvings"].get<long>(), 0);  // one halving per release before 2026-12-05: 2 here
@@ -280,16 +283,18 @@ TEST(ImplicitScene, SnapBackReleaseGoesOnAndStopEndsTheRunAtThePoint) {
     ASSERT_EQ(scene.solver.snapBack, SnapBackPolicy::Stop);
     const RunResult r = runScene(scene, quietRun(dir.path() / "stop"));
     EXPECT_FALSE(r.completed);
-    expectContains(r.error, "a material snap-back persists after a halving");
-    expectContains(r.error, "snap-back");
-    expectContains(r.error, "; particle ");
+    ASSERT_TRUE(r.failure);
+    EXPECT_EQ(r.failure->kind, FailureKind::SnapBack);
+    EXPECT_EQ(r.failure->materialStatus, UpdateStatus::SnapBack);
     // The weak row is y = 490-500 mm: the point named lies in it.
-    const auto at = r.error.find(") mm");
-    ASSERT_NE(at, std::string::npos);
-    const double y = std::stod(r.error.substr(r.error.rfind(", ", at) + 2));
-    EXPECT_GT(y, 489.0);
-    EXPECT_LT(y, 501.0);
+    ASSERT_TRUE(r.failure->particle && r.failure->position);
+    EXPECT_GT((*r.failure->position)[1], 489.0);
+    EXPECT_LT((*r.failure->position)[1], 501.0);
     const auto j = nlohmann::json::parse(fileText(dir.path() / "stop" / "summary.json"));
+    EXPECT_EQ(j["failure"]["kind"], "snap_back");
+    EXPECT_EQ(j["failure"]["exit_status"], exitStatusOf(FailureKind::SnapBack));
+    EXPECT_EQ(j["failure"]["particle"].get<std::size_t>(), *r.failure->particle);
+    EXPECT_EQ(j["failure"]["material_status"], toString(UpdateStatus::SnapBack));
     EXPECT_EQ(j["status"], "failed");
     EXPECT_EQ(j["snap_back_releases"].get<long>(), 0);
     EXPECT_TRUE(std::filesystem::exists(dir.path() / "stop" / "checkpoint.bin"));  // the last converged state
@@ -350,8 +355,11 @@ TEST(ImplicitScene, DisplacementControlStopsAtTheStructuralSnapBackAndSaysSo) {
   EXPECT_FALSE(r.completed);
   // It got to the peak (2.9 MPa x 20 mm^2 = 58 N) before it failed.
   EXPECT_NEAR(r.peakLoad, 58.0, 0.01 * 58.0);
-  expectContains(r.error, "passed a limit point");
-  expectContains(r.error, "indirect control");
+  ASSERT_TRUE(r.failure);
+  EXPECT_TRUE(r.failure->kind == FailureKind::NewtonNotConverged || r.failure->kind == FailureKind::SingularTangent)
+      << toString(r.failure->kind);
+  EXPECT_TRUE(r.failure->likelyLimitPoint);
+  EXPECT_EQ(nlohmann::json::parse(fileText(dir.path() / "out" / "summary.json"))["failure"]["likely_limit_point"], true);
 }
 
 // uGIMP with a free margin of grid nodes: the block's edge particles reach the margin nodes with
@@ -378,7 +386,7 @@ conditions:
   const Scene scene = readScene(io::parseYaml(text, "min-ugimp.yaml"));
   ecm::test::TempDir dir;
   const RunResult r = runScene(scene, quietRun(dir.path() / "out"));
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   EXPECT_NEAR(r.peakLoad, 10.0, 1e-9 * 10.0);
 }
 

@@ -74,14 +74,14 @@ TEST(PlatenCheckpoint, AnExplicitRunStoppedAndResumedIsTheUninterruptedOneBitwis
   TempDir tmp;
   const Scene scene = platenBlock();
   const RunResult whole = runScene(scene, quiet(tmp.path() / "whole"));
-  ASSERT_TRUE(whole.completed) << whole.error;
+  ASSERT_TRUE(whole.completed) << whole.message();
   RunOptions first = quiet(tmp.path() / "split");
   first.maxSteps = whole.steps / 2 + 3;  // between two output rows, the block cracked
   ASSERT_TRUE(runScene(scene, first).stopped);
   RunOptions second = quiet(tmp.path() / "split", 2);
   second.restart = true;
   const RunResult resumed = runScene(scene, second);
-  ASSERT_TRUE(resumed.completed) << resumed.error;
+  ASSERT_TRUE(resumed.completed) << resumed.message();
   EXPECT_EQ(resumed.restartedFrom, first.maxSteps);
   EXPECT_EQ(resumed.peakLoad, whole.peakLoad);
   const nlohmann::json platens = platensOf(tmp.path() / "whole");
@@ -107,7 +107,7 @@ TEST(PlatenCheckpoint, AnImplicitRunStoppedAndResumedIsTheUninterruptedOneBitwis
   options.restart = true;
   options.maxSteps = 40;
   const RunResult resumed = runScene(scene, options);
-  ASSERT_TRUE(resumed.stopped) << resumed.error;
+  ASSERT_TRUE(resumed.stopped) << resumed.message();
   EXPECT_EQ(resumed.restartedFrom, 23);
   EXPECT_EQ(platensOf(tmp.path() / "whole").size(), 3u);
   expectSameRun(tmp.path() / "whole", tmp.path() / "split");

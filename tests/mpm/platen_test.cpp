@@ -43,7 +43,7 @@ std::map<std::string, double> run(const std::string& text) {
   const Scene scene = readScene(io::parseYaml(text, "platen.yaml"));
   ecm::test::TempDir dir;
   const RunResult r = runScene(scene, quietRun(dir.path() / "out"));
-  EXPECT_TRUE(r.completed) << r.error;
+  EXPECT_TRUE(r.completed) << r.message();
   return lastRow(dir.path() / "out" / "history.csv");
 }
 

@@ -29,7 +29,7 @@ TEST(Run, WritesHistorySummarySnapshots) {
   o.plot = false;
   o.progress = false;
   const RunResult r = runScene(s, o);
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   const io::CsvTable h = io::readCsv(o.outputDir / "history.csv");
   EXPECT_EQ(h.header, historyColumns(s));
   EXPECT_EQ(h.rows.size(), 6u);  // t = 0, 2e-5, ..., 1e-4
@@ -102,7 +102,7 @@ TEST(Run, SnapshotEveryNthOutputRowAndTheLast) {
   o.plot = false;
   o.progress = false;
   const RunResult r = runScene(s, o);
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   const io::CsvTable h = io::readCsv(o.outputDir / "history.csv");
   ASSERT_EQ(h.rows.size(), 11u);
   const std::string pvd = readFile(o.outputDir / "particles.pvd");
@@ -129,7 +129,7 @@ TEST(Run, ParticleSnapshotsAtTheRequestedTimes) {
   o.progress = false;
   o.snapshots = false;
   const RunResult r = runScene(s, o);
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   const io::CsvTable a = io::readCsv(o.outputDir / "particles_t3e-05.csv");
   EXPECT_EQ(a.header, (std::vector<std::string>{"x_mm", "y_mm", "damage", "material", "opening_mm", "normal_x",
                                                 "normal_y", "sig_xx_MPa", "sig_yy_MPa", "sig_xy_MPa"}));
@@ -153,13 +153,22 @@ TEST(Run, FailureKeepsOutputsReadableAndExplainsInSummary) {
   o.plot = false;
   const RunResult r = runScene(s, o);
   EXPECT_FALSE(r.completed);
-  EXPECT_NE(r.error.find("left the grid"), std::string::npos) << r.error;
+  ASSERT_TRUE(r.failure);
+  EXPECT_EQ(r.failure->kind, FailureKind::LeftGrid) << r.message();
+  ASSERT_TRUE(r.failure->position);
+  EXPECT_GT((*r.failure->position)[0], 100.0);  // past the grid's right edge
   const io::CsvTable h = io::readCsv(o.outputDir / "history.csv");
   EXPECT_GE(h.rows.size(), 2u);
   EXPECT_TRUE(std::filesystem::exists(o.outputDir / "particles_00001.vtu")) << "the state at the failure";
   const auto j = nlohmann::json::parse(readFile(o.outputDir / "summary.json"));
   EXPECT_EQ(j["status"], "failed");
-  EXPECT_NE(j["error"].get<std::string>().find("left the grid"), std::string::npos);
+  EXPECT_EQ(j["error"], r.message());  // the message, for people
+  EXPECT_EQ(j["failure"]["kind"], "left_grid");
+  EXPECT_EQ(j["failure"]["exit_status"], 10);  // io/cli_exit.hpp
+  EXPECT_EQ(j["failure"]["step"], r.failure->step);
+  EXPECT_EQ(j["failure"]["particle"].get<std::size_t>(), *r.failure->particle);
+  EXPECT_EQ(j["failure"]["position_mm"][0].get<double>(), (*r.failure->position)[0]);
+  EXPECT_FALSE(j["failure"].contains("material_status"));  // not a material failure
 }
 
 }  // namespace

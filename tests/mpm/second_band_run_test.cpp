@@ -25,7 +25,7 @@ TEST(SecondBandRun, OpensSecondBandsAndWritesThem) {
   o.progress = false;
   o.threads = 2;
   const RunResult r = runScene(s, o);
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   const auto j = nlohmann::json::parse(readFile(o.outputDir / "summary.json"));
   ASSERT_TRUE(j.contains("two_band_points"));
   const int twoBands = j["two_band_points"];

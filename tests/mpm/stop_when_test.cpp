@@ -55,7 +55,7 @@ TEST(StopWhen, EndsTheRunAtTheFirstRowBelowTheFractionOfThePeak) {
   TempDir tmp;
   const Scene s = softeningBlock();
   const RunResult r = runScene(s, options(tmp.path()));
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   EXPECT_TRUE(r.endedByStopWhen);
   const io::CsvTable h = io::readCsv(tmp.path() / "history.csv");
   const auto col = static_cast<std::size_t>(std::find(h.header.begin(), h.header.end(), "top_ry_N") - h.header.begin());
@@ -87,14 +87,14 @@ TEST(StopWhen, ARestartedRunStopsAtTheSameRow) {
   TempDir tmp;
   const Scene s = softeningBlock();
   const RunResult whole = runScene(s, options(tmp.path() / "whole"));
-  ASSERT_TRUE(whole.endedByStopWhen) << whole.error;
+  ASSERT_TRUE(whole.endedByStopWhen) << whole.message();
   RunOptions first = options(tmp.path() / "split");
   first.maxSteps = whole.steps - 20;  // past the peak, a few rows before the stop
   ASSERT_TRUE(runScene(s, first).stopped);
   RunOptions second = options(tmp.path() / "split");
   second.restart = true;
   const RunResult resumed = runScene(s, second);
-  ASSERT_TRUE(resumed.endedByStopWhen) << resumed.error;
+  ASSERT_TRUE(resumed.endedByStopWhen) << resumed.message();
   EXPECT_EQ(resumed.steps, whole.steps);
   EXPECT_EQ(readFile(tmp.path() / "split" / "history.csv"), readFile(tmp.path() / "whole" / "history.csv"));
 }

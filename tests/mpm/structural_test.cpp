@@ -61,7 +61,7 @@ TEST(Structural, TensionBlockSceneCracksAtTheLigament) {
   o.outputDir = tmp.path();
   o.progress = false;
   const RunResult r = runScene(s, o);
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   EXPECT_GT(r.peakLoad, 0.8 * 9000.0);
   EXPECT_LT(r.peakLoad, 1.15 * 9000.0);
   const auto j = nlohmann::json::parse(readFile(tmp.path() / "summary.json"));
@@ -99,7 +99,7 @@ class DenFullRun : public ::testing::TestWithParam<const char*> {};
 TEST_P(DenFullRun, MeetsTheMeshObjectivityAndQuasiStaticCriteria) {
   TempDir tmp;
   const RunResult r = runDenScene(std::string("den-4b-") + GetParam(), tmp.path());
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   const io::CsvTable h = io::readCsv(tmp.path() / "history.csv");
   const auto column = [&](const std::string& name) {
     const auto it = std::find(h.header.begin(), h.header.end(), name);
@@ -138,7 +138,7 @@ class DenImplicitRun : public ::testing::TestWithParam<ImplicitDen> {};
 TEST_P(DenImplicitRun, GoesBelowATenthOfItsPeakInEquilibrium) {
   TempDir tmp;
   const RunResult r = runDenScene(GetParam().scene, tmp.path());
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   const auto j = nlohmann::json::parse(readFile(tmp.path() / "summary.json"));
   ASSERT_TRUE(j["stop_when"]["met"].get<bool>()) << "the run should end by P < 10 % of its peak";
   EXPECT_LT(std::abs(j["stop_when"]["load_at_stop_N"].get<double>()), 0.1 * r.peakLoad);

@@ -30,7 +30,7 @@ TEST(Validation, TheDenRigCoarseToItsPeak) {
   scene.stopWhen.reset();
   ecm::test::TempDir dir;
   const RunResult r = runScene(scene, quietRun(dir.path() / "out"));
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   const auto history = historyRows(dir.path() / "out" / "history.csv");
   const auto& peak = peakRow(history, "upper-frame_Fy_N");
   const double p = peak.at("upper-frame_Fy_N");
@@ -51,7 +51,7 @@ TEST(Validation, TheLPanelCoarseToItsFirstPeak) {
   scene.endTime = 0.0125;
   ecm::test::TempDir dir;
   const RunResult r = runScene(scene, quietRun(dir.path() / "out"));
-  ASSERT_TRUE(r.completed) << r.error;
+  ASSERT_TRUE(r.completed) << r.message();
   const auto history = historyRows(dir.path() / "out" / "history.csv");
   const auto& peak = peakRow(history, "load-plate_Fy_N");
   const double f = peak.at("load-plate_Fy_N");

@@ -122,3 +122,46 @@ def test_a_scene_loaded_with_load_scene_runs_as_its_file(source, tmp_path):
     ecm.run_scene(scene, tmp_path / "dict", threads=1, snapshots=False, plot=False)
     ecm.run_scene(source / "data/mpm/elastic-bar.yaml", tmp_path / "file", threads=1, snapshots=False, plot=False)
     assert (tmp_path / "dict/history.csv").read_bytes() == (tmp_path / "file/history.csv").read_bytes()
+
+
+# A failed run: its kind travels as data (mpm/core/errors.hpp) to the exit status, summary.json and
+# the exception. The implicit bar asked for a tolerance below round-off (1e-16, and the same to
+# accept a stalled step) cannot converge its first step: newton_not_converged, exit status 14.
+def _unconvergeable_bar(source, tmp_path):
+    text = (source / "data/mpm/bar-snapback-implicit.yaml").read_text()
+    text = text.replace("until: 0.04 ", "until: 0.0002").replace(
+        "tolerance: 1e-6 ", "tolerance: 1e-16\n  accept_tolerance: 1e-16\n  max_iterations: 2\n  max_halvings: 2\n")
+    scene = tmp_path / "bar.yaml"
+    scene.write_text(text)
+    return scene
+
+
+def test_every_failure_kind_has_its_own_exception_class():
+    kinds = ecm._ecm._failure_kinds()
+    assert len(kinds) == len(ecm.failures.FAILURE_CLASSES) == len({c for c in ecm.failures.FAILURE_CLASSES.values()})
+    for name, status, meaning in kinds:
+        cls = ecm.failures.FAILURE_CLASSES[name]
+        assert issubclass(cls, ecm.RunFailed) and issubclass(cls, RuntimeError)
+        assert cls.kind == name and getattr(ecm, cls.__name__) is cls and cls.__name__ in ecm.__all__
+        assert str(status) in cls.__doc__ and meaning in cls.__doc__
+
+
+def test_a_failed_run_raises_its_kind_and_the_tool_exits_with_its_status(source, tmp_path):
+    scene = _unconvergeable_bar(source, tmp_path)
+    status, err = run_tool("ecm-mpm", scene, "-o", tmp_path / "cli", "--no-vtu", "--no-plot", "-q", "-t", 1)
+    assert status == 14, err  # newton_not_converged (io/cli_exit.hpp, mpm/core/errors.cpp)
+    summary = ecm.read_mpm_output(tmp_path / "cli").summary
+    assert summary["status"] == "failed" and summary["failure"]["kind"] == "newton_not_converged"
+    assert summary["failure"]["exit_status"] == 14 and summary["failure"]["step"] == 1
+    with pytest.raises(ecm.NewtonNotConvergedError) as raised:
+        ecm.run_scene(scene, tmp_path / "py", threads=1, snapshots=False, plot=False)
+    e = raised.value
+    assert e.kind == "newton_not_converged" and e.exit_status == 14 and e.step == 1
+    assert not e.likely_limit_point  # nothing has cracked yet
+    assert e.out == str(tmp_path / "py") and e.result["status"] == "failed"
+    assert str(e) == summary["error"]  # the same message as the tool's
+    assert (tmp_path / "py/history.csv").read_bytes() == (tmp_path / "cli/history.csv").read_bytes()
+    # check=False: the dict, with the failure as data.
+    r = ecm.run_scene(scene, tmp_path / "unchecked", threads=1, snapshots=False, plot=False, check=False)
+    assert r["status"] == "failed" and r["failure"]["kind"] == "newton_not_converged" and r["failure"]["step"] == 1
+    assert r["failure"]["particle"] is None and r["failure"]["position_mm"] is None
