@@ -6,6 +6,7 @@
 #include <optional>
 #include <vector>
 
+#include "bench/intact_updates.hpp"
 #include "material/material_3d.hpp"
 
 namespace {
@@ -18,20 +19,9 @@ const Voigt6 kStep3 = embed(2e-7, -2e-8, -2e-8, 3e-8);
 constexpr int kBatch = 1024;
 
 void BM_Enriched3DIntact(benchmark::State& st) {
-  const TwoPhasePoint3D model(concrete3());
   std::vector<Voigt6> strains(kBatch);
   for (int i = 0; i < kBatch; ++i) strains[i] = embed(2e-5 + 1e-8 * i, -1e-6, -1e-6, 1e-7 * (i % 7));
-  const auto size = EffectiveSize3::fixed(2.5);
-  std::optional<BandState3> onset;
-  for (auto _ : st) {
-    for (auto& e : strains) {
-      const UpdateResult3 r = model.updateIntact(e, kStep3, size, onset, SnapBackPolicy::Stop);
-      benchmark::DoNotOptimize(r.stress);
-      e -= kStep3;
-    }
-  }
-  if (onset) st.SkipWithError("a point cracked");
-  st.SetItemsProcessed(st.iterations() * kBatch);
+  intactUpdates(st, TwoPhasePoint3D(concrete3()), strains, kStep3, EffectiveSize3::fixed(2.5));
 }
 BENCHMARK(BM_Enriched3DIntact);
 

@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "bench/intact_updates.hpp"
 #include "material/material.hpp"
 
 namespace {
@@ -39,19 +40,7 @@ void BM_Elastic(benchmark::State& st) {
 BENCHMARK(BM_Elastic);
 
 void BM_EnrichedIntact(benchmark::State& st) {
-  const TwoPhasePoint model(concrete());
-  std::vector<Voigt> strains = batchStrains();
-  const auto size = EffectiveSize::fixed(2.5);
-  std::optional<BandState> onset;
-  for (auto _ : st) {
-    for (auto& e : strains) {
-      const UpdateResult r = model.updateIntact(e, kStep, size, onset, SnapBackPolicy::Stop);
-      benchmark::DoNotOptimize(r.stress);
-      e -= kStep;
-    }
-  }
-  if (onset) st.SkipWithError("a point cracked");
-  st.SetItemsProcessed(st.iterations() * kBatch);
+  intactUpdates(st, TwoPhasePoint(concrete()), batchStrains(), kStep, EffectiveSize::fixed(2.5));
 }
 BENCHMARK(BM_EnrichedIntact);
 
@@ -171,13 +160,8 @@ BENCHMARK(BM_SmearedSoftening);
 // elastic), 1 cracked points softening further. bench/python_update_bench.py times the same
 // from Python.
 void BM_MaterialUpdateMany(benchmark::State& st) {
-  MaterialParams p;
-  p.model = ModelKind::Enriched;
-  p.elastic = {32000.0, 0.2, Hypothesis::PlaneStress};
-  p.tensileStrength = 3.0;
-  p.softeningModulus = 8.184;
-  p.softeningExponent = 0.128;
-  p.bandWidth = 0.05;
+  MaterialParams p{.model = ModelKind::Enriched, .elastic = {32000.0, 0.2, Hypothesis::PlaneStress},
+                   .tensileStrength = 3.0, .softeningModulus = 8.184, .softeningExponent = 0.128, .bandWidth = 0.05};
   const Material m(p);
   const bool cracked = st.range(0) != 0;
   const auto size = EffectiveSize::fixed(2.5);

@@ -19,11 +19,8 @@ using namespace ecm;
 using namespace ecm::mpm;
 
 MaterialParams elastic() {
-  MaterialParams m;
-  m.name = "elastic";
-  m.model = ModelKind::LinearElastic;
-  m.elastic = {32000.0, 0.2, Hypothesis::PlaneStress};
-  m.density = 2.4e-9;
+  MaterialParams m{.name = "elastic", .model = ModelKind::LinearElastic,
+                   .elastic = {32000.0, 0.2, Hypothesis::PlaneStress}, .density = 2.4e-9};
   return m;
 }
 

@@ -7,6 +7,7 @@
 #include "calibration/calibration_error.hpp"
 #include "calibration/fracture_energy.hpp"
 #include "calibration/target_csv.hpp"
+#include "material/parameter_check.hpp"
 
 namespace ecm::calibration {
 
@@ -87,13 +88,6 @@ void overlay(CalibrationInput& base, const CalibrationInput& top) {
 
 namespace {
 
-std::string str(double v) {
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
-}
-
 const Quantity& quantity(const char* key) {
   for (const Quantity& q : quantities())
     if (std::string(q.key) == key) return q;
@@ -104,7 +98,7 @@ std::string label(const Quantity& q) { return std::string(q.key) + " " + q.symbo
 
 // "3 MPa", or just "0.5" for dimensionless quantities.
 std::string withUnit(double v, const Quantity& q) {
-  return std::string(q.unit) == "-" ? str(v) : str(v) + " " + q.unit;
+  return std::string(q.unit) == "-" ? numberText(v, 10) : numberText(v, 10) + " " + q.unit;
 }
 
 class Checker {
@@ -130,7 +124,7 @@ class Checker {
     const Quantity& q = quantity(key);
     const std::optional<double>& v = in_.*q.member;
     if (!v) throw CalibrationError("missing " + label(key) + ", needed " + purpose);
-    if (!std::isfinite(*v)) fail(key, label(key) + " = " + str(*v) + " is not a finite number");
+    if (!std::isfinite(*v)) fail(key, label(key) + " = " + numberText(*v, 10) + " is not a finite number");
     if (!q.range.contains(*v))
       fail(key, label(key) + " = " + withUnit(*v, q) + " is outside the allowed range " + q.range.str() +
                     (*q.rangeNote ? std::string(": ") + q.rangeNote : std::string()));
@@ -199,8 +193,8 @@ CalibrationPlan planCalibration(const CalibrationInput& in) {
     if (p.mode != CalibrationMode::CrackBand) {
       const double least = minimumFractureEnergy(p.law.youngsModulus, p.law.tensileStrength, p.width);
       if (!(p.fractureEnergy > least))
-        c.fail("fracture_energy", c.label("fracture_energy") + " = " + str(p.fractureEnergy) +
-                                      " N/mm is below the elastic minimum h ft^2/(2E) = " + str(least) +
+        c.fail("fracture_energy", c.label("fracture_energy") + " = " + numberText(p.fractureEnergy, 10) +
+                                      " N/mm is below the elastic minimum h ft^2/(2E) = " + numberText(least, 10) +
                                       " N/mm: no softening law of the form of Eq. (13) dissipates so little");
     }
   }

@@ -3,6 +3,7 @@
 // see calibration/README.md. Exit status (io/cli_exit.hpp): 0 done, 1 no result (no crack-band
 // E_p exists: H >= H_crit) or an output could not be written, 2 bad input or output folder.
 #include <CLI/CLI.hpp>
+#include <optional>
 
 #include <iostream>
 #include <map>
@@ -11,6 +12,7 @@
 #include "calibration/calibration_input.hpp"
 #include "calibration/calibration_run.hpp"
 #include "io/cli_exit.hpp"
+#include "io/command_line.hpp"
 #include "io/material_yaml.hpp"
 #include "io/output_dir.hpp"
 #include "material/parameter_check.hpp"
@@ -69,14 +71,7 @@ int main(int argc, char** argv) {
   app.add_option("--name", name, "name of the written material (default calibrated)");
   app.add_option("--hypothesis", hypothesis, "plane_stress (default) | plane_strain, for the written material");
 
-  app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return io::errorLine("ecm-calibrate", e.what()) + "Run with --help for more information.\n";
-  });
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return io::commandLineStatus(app.exit(e));  // --help exits 0
-  }
+  if (const std::optional<int> status = io::parseCommandLine(app, "ecm-calibrate", argc, argv)) return *status;
 
   CalibrationInput cli;
   for (const Quantity& q : quantities())

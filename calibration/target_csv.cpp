@@ -5,18 +5,12 @@
 
 #include "io/csv_reader.hpp"
 #include "io/yaml_input.hpp"
+#include "material/parameter_check.hpp"
 
 namespace ecm::calibration {
 
 namespace {
 constexpr std::size_t kMinimumPoints = 3;  // as validateTarget asks
-
-std::string str(double v) {
-  std::ostringstream s;
-  s.precision(12);
-  s << v;
-  return s.str();
-}
 }  // namespace
 
 TargetCurve readTargetCsv(const std::filesystem::path& path) {
@@ -26,10 +20,10 @@ TargetCurve readTargetCsv(const std::filesystem::path& path) {
   t.source = file;
   for (std::size_t i = 0; i < table.rows.size(); ++i) {
     const double w = table.rows[i][0], sigma = table.rows[i][1];
-    if (w < 0.0) throw io::InputError(file, table.lines[i], "opening w = " + str(w) + " mm is negative (must be >= 0)");
+    if (w < 0.0) throw io::InputError(file, table.lines[i], "opening w = " + numberText(w, 12) + " mm is negative (must be >= 0)");
     if (i > 0 && !(w > t.opening.back()))
-      throw io::InputError(file, table.lines[i], "openings must increase strictly: w = " + str(w) + " mm after w = " +
-                                                     str(t.opening.back()) + " mm");
+      throw io::InputError(file, table.lines[i], "openings must increase strictly: w = " + numberText(w, 12) + " mm after w = " +
+                                                     numberText(t.opening.back(), 12) + " mm");
     t.opening.push_back(w);
     t.stress.push_back(sigma);
   }

@@ -4,19 +4,13 @@
 #include <sstream>
 
 #include "calibration/calibration_error.hpp"
+#include "material/parameter_check.hpp"
 
 namespace ecm::calibration {
 
 namespace {
 constexpr double kC1 = 3.0, kC2 = 6.93, kCriticalOpeningFactor = 5.14;
 constexpr std::size_t kMinimumPoints = 3;
-
-std::string str(double v) {
-  std::ostringstream s;
-  s.precision(12);
-  s << v;
-  return s.str();
-}
 }  // namespace
 
 double hordijkCriticalOpening(double ft, double gf) { return kCriticalOpeningFactor * gf / ft; }
@@ -43,8 +37,8 @@ TargetCurve hordijkCurve(double ft, double gf, int count) {
 }
 
 std::string hordijkGnuplot(double ft, double gf) {
-  const std::string r = "(x/" + str(hordijkCriticalOpening(ft, gf)) + ")";
-  return "(x < " + str(hordijkCriticalOpening(ft, gf)) + " ? " + str(ft) + "*((1+(3*" + r + ")**3)*exp(-6.93*" + r +
+  const std::string r = "(x/" + numberText(hordijkCriticalOpening(ft, gf), 12) + ")";
+  return "(x < " + numberText(hordijkCriticalOpening(ft, gf), 12) + " ? " + numberText(ft, 12) + "*((1+(3*" + r + ")**3)*exp(-6.93*" + r +
          ") - " + r + "*28*exp(-6.93)) : 0)";
 }
 
@@ -56,10 +50,10 @@ void validateTarget(const TargetCurve& t) {
   for (std::size_t i = 0; i < t.opening.size(); ++i) {
     if (!std::isfinite(t.opening[i]) || !std::isfinite(t.stress[i]))
       throw CalibrationError("target curve: point " + std::to_string(i + 1) + " is not finite");
-    if (t.opening[i] < 0.0) throw CalibrationError("target curve: opening w = " + str(t.opening[i]) + " mm is negative");
+    if (t.opening[i] < 0.0) throw CalibrationError("target curve: opening w = " + numberText(t.opening[i], 12) + " mm is negative");
     if (i > 0 && !(t.opening[i] > t.opening[i - 1]))
-      throw CalibrationError("target curve: openings must increase strictly: w = " + str(t.opening[i]) +
-                             " mm after w = " + str(t.opening[i - 1]) + " mm");
+      throw CalibrationError("target curve: openings must increase strictly: w = " + numberText(t.opening[i], 12) +
+                             " mm after w = " + numberText(t.opening[i - 1], 12) + " mm");
   }
 }
 

@@ -12,6 +12,7 @@
 #include "cohesive/scene.hpp"
 #include "cohesive/solver.hpp"
 #include "io/cli_exit.hpp"
+#include "io/command_line.hpp"
 #include "io/json_summary.hpp"
 #include "io/output_dir.hpp"
 #include "io/yaml_input.hpp"
@@ -76,14 +77,7 @@ int main(int argc, char** argv) {
   app.add_option("--out", out, "output folder")->required();
   app.add_option("--cell", cell, "target cell size (mm), overrides the scene's cell");
   app.add_option("--law", law, "band | hordijk | table, overrides the scene's law");
-  app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return io::errorLine("ecm-cohesive", e.what()) + "Run with --help for more information.\n";
-  });
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return io::commandLineStatus(app.exit(e));
-  }
+  if (const std::optional<int> status = io::parseCommandLine(app, "ecm-cohesive", argc, argv)) return *status;
   SceneOverrides overrides;
   overrides.cellSize = cell;
   if (app.count("--law") > 0) {

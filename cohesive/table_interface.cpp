@@ -4,16 +4,11 @@
 #include <cmath>
 #include <sstream>
 
+#include "material/parameter_check.hpp"
+
 namespace ecm::cohesive {
 
 namespace {
-
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
-}
 
 // The segment [w_k, w_k+1] that holds w (the one ahead at a row; the last at the end).
 std::size_t segment(const TableInterface& p, double w) {
@@ -57,15 +52,15 @@ void TableInterface::checkRows() const {
   if (opening.size() != traction.size()) throw TableRowError("the table's columns differ in length", 0);
   if (opening.size() < 2)
     throw TableRowError("the table needs at least 2 rows, it has " + std::to_string(opening.size()), opening.empty() ? 0 : opening.size() - 1);
-  if (opening[0] != 0.0) throw TableRowError("the first row's opening must be 0 (where the crack starts at f_t'), not " + num(opening[0]) + " mm", 0);
+  if (opening[0] != 0.0) throw TableRowError("the first row's opening must be 0 (where the crack starts at f_t'), not " + numberText(opening[0], 10) + " mm", 0);
   for (std::size_t k = 0; k < opening.size(); ++k) {
-    if (!std::isfinite(opening[k])) throw TableRowError("opening " + num(opening[k]) + " is not finite", k);
+    if (!std::isfinite(opening[k])) throw TableRowError("opening " + numberText(opening[k], 10) + " is not finite", k);
     if (k > 0 && !(opening[k] > opening[k - 1]))
-      throw TableRowError("opening " + num(opening[k]) + " mm is not above the previous row's " + num(opening[k - 1]) +
+      throw TableRowError("opening " + numberText(opening[k], 10) + " mm is not above the previous row's " + numberText(opening[k - 1], 10) +
                               " mm: the openings must increase strictly",
                           k);
     if (!(std::isfinite(traction[k]) && traction[k] >= 0.0))
-      throw TableRowError("traction " + num(traction[k]) + " MPa at opening " + num(opening[k]) + " mm must be finite and >= 0", k);
+      throw TableRowError("traction " + numberText(traction[k], 10) + " MPa at opening " + numberText(opening[k], 10) + " mm must be finite and >= 0", k);
   }
   if (!(traction[0] > 0.0)) throw TableRowError("the first row's traction is the tensile strength f_t' and must be > 0", 0);
 }
@@ -74,8 +69,8 @@ void TableInterface::checkStiffness() const {
   requireInRange("initial stiffness K0", initialStiffness, 0.0, INFINITY);
   for (std::size_t k = 1; k < opening.size(); ++k)
     if (!(initialStiffness * opening[k] > traction[k]))
-      throw ParameterError("initial stiffness K0 = " + num(initialStiffness) + " MPa/mm is too low: the line K0 w must stay above the table from its second row on, but at opening " +
-                           num(opening[k]) + " mm K0 w = " + num(initialStiffness * opening[k]) + " MPa against the table's " + num(traction[k]) +
+      throw ParameterError("initial stiffness K0 = " + numberText(initialStiffness, 10) + " MPa/mm is too low: the line K0 w must stay above the table from its second row on, but at opening " +
+                           numberText(opening[k], 10) + " mm K0 w = " + numberText(initialStiffness * opening[k], 10) + " MPa against the table's " + numberText(traction[k], 10) +
                            " MPa");
 }
 
@@ -109,8 +104,8 @@ InterfaceResponse updateTable(const TableInterface& p, TableState& state, double
   InterfaceResponse r;
   if (jump > wOld) {  // loading on the envelope
     if (jump > p.endOpening())
-      throw InterfaceLawError("opening " + num(jump) + " mm is past the end of the traction-opening table" +
-                              (p.source.empty() ? std::string() : " " + p.source) + " (its last row is at " + num(p.endOpening()) +
+      throw InterfaceLawError("opening " + numberText(jump, 10) + " mm is past the end of the traction-opening table" +
+                              (p.source.empty() ? std::string() : " " + p.source) + " (its last row is at " + numberText(p.endOpening(), 10) +
                               " mm): the table law does not extrapolate, extend the table");
     r.traction = tableEnvelope(p, jump);
     r.tangent = tableEnvelopeSlope(p, jump);

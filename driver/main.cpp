@@ -4,6 +4,7 @@
 // Exit status (io/cli_exit.hpp): 0 done, 1 the run stopped early or an output could not be
 // written (outputs so far kept), 2 bad input or output folder.
 #include <CLI/CLI.hpp>
+#include <optional>
 
 #include <iostream>
 
@@ -12,6 +13,7 @@
 #include "driver/point_scene_yaml.hpp"
 #include "driver/snapback_study.hpp"
 #include "io/cli_exit.hpp"
+#include "io/command_line.hpp"
 #include "io/output_dir.hpp"
 #include "io/progress.hpp"
 
@@ -21,14 +23,7 @@ int main(int argc, char** argv) {
   app.add_option("scene", scene, "point scene (YAML)")->check(CLI::ExistingFile);
   app.add_option("--study", study, "snap-back study over effective sizes (YAML)")->check(CLI::ExistingFile);
   app.add_option("--out", out, "output folder (default out/point/<scene name> or out/snapback-study)");
-  app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return ecm::io::errorLine("ecm-point", e.what()) + "Run with --help for more information.\n";
-  });
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return ecm::io::commandLineStatus(app.exit(e));
-  }
+  if (const std::optional<int> status = ecm::io::parseCommandLine(app, "ecm-point", argc, argv)) return *status;
   if (scene.empty() == study.empty()) {
     ecm::io::printError("ecm-point", "give either a SCENE.yaml or --study STUDY.yaml");
     std::cerr << "Run with --help for more information.\n";

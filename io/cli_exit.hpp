@@ -9,7 +9,8 @@
 //   3 stopped on request with a checkpoint (ecm-mpm: a signal or --max-steps): resume it;
 //   10-20 (ecm-mpm) the run failed, outputs so far kept, one status per failure kind (the table of
 //     kinds, names and statuses: mpm/core/errors.cpp; summary.json's failure.kind names it).
-// Free of CLI11: each main catches CLI::ParseError and passes app.exit(e) to commandLineStatus.
+// Free of CLI11: each main parses its command line through io/command_line.hpp, which passes
+// app.exit(e) to commandLineStatus.
 // Every error message a tool prints has one form, errorLine(): "ecm-mpm: error: REASON" (an
 // input's reason is "FILE:LINE: reason"); CLI11's own messages take it through
 // app.failure_message(...).

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "io/utf8.hpp"
+#include "material/parameter_check.hpp"
 
 namespace ecm::io {
 
@@ -25,19 +26,9 @@ bool Range::contains(double v) const {
   return aboveLo && belowHi;
 }
 
-namespace {
-std::string number(double v) {
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  std::ostringstream s;
-  s.precision(12);
-  s << v;
-  return s.str();
-}
-}  // namespace
-
 std::string Range::str() const {
   std::ostringstream s;  // (a stream: GCC 12 warns falsely, -Wrestrict, on "(" + std::string&&)
-  s << (loClosed ? "[" : "(") << number(lo) << ", " << number(hi) << (hiClosed ? "]" : ")");
+  s << (loClosed ? "[" : "(") << numberText(lo, 12) << ", " << numberText(hi, 12) << (hiClosed ? "]" : ")");
   return s.str();
 }
 
@@ -138,7 +129,7 @@ std::string convert<std::string>(const YAML::Node& n, const std::string& file, i
 
 void checkRange(double v, const Range& r, const std::string& file, int line, const std::string& key) {
   if (r.contains(v)) return;
-  throw InputError(file, line, "key '" + key + "': value " + number(v) + " is outside the allowed range " + r.str());
+  throw InputError(file, line, "key '" + key + "': value " + numberText(v, 12) + " is outside the allowed range " + r.str());
 }
 
 std::string joined(const std::set<std::string>& names) {

@@ -18,4 +18,11 @@ void requireInRange(const char* name, double value, double lo, double hi, bool l
   throw ParameterError(msg.str(), key.substr(0, key.find(' ')));
 }
 
+std::string numberText(double v, int digits) {
+  std::ostringstream s;
+  s.precision(digits);
+  s << v;
+  return s.str();
+}
+
 }  // namespace ecm

@@ -17,4 +17,7 @@ struct ParameterError : std::invalid_argument {
 void requireInRange(const char* name, double value, double lo, double hi, bool loClosed = false,
                     bool hiClosed = false);
 
+// A number in a message, in `digits` significant digits ("inf", "nan" as the stream writes them).
+std::string numberText(double v, int digits);
+
 }  // namespace ecm

@@ -8,11 +8,10 @@
 // for a whole unloading episode: an explicit solver builds them once and then takes each
 // unloading update as two 3x3 products instead of the predictor's solve. Plain data; built by
 // TwoPhasePoint::secantResponse().
+#include "material/band_state.hpp"
 #include "material/voigt.hpp"
 
 namespace ecm {
-
-struct BandState;
 
 struct SecantResponse {
   // The band state the maps were built for (the key: a map that does not match is rebuilt).
@@ -26,9 +25,11 @@ struct SecantResponse {
   Tangent bandStressOfStrain = Tangent::Zero();                 // B (MPa)
   Voigt bandStressAtZeroStrain = Voigt::Zero();                 // b (MPa)
 
-  // Whether the maps are those of band state b (its fixed data and its integrity, bit for bit;
-  // defined after BandState in material/two_phase_point.hpp).
-  bool builtFor(const BandState& b) const;
+  // Whether the maps are those of band state b (its fixed data and its integrity, bit for bit).
+  bool builtFor(const BandState& b) const {
+    return integrity == b.integrity && volumeFraction == b.volumeFraction && crackNormal == b.crackNormal &&
+           onsetStrain == b.onsetStrain;
+  }
 };
 
 }  // namespace ecm

@@ -7,6 +7,8 @@
 #include <string>
 
 #include "material/band_damage_law.hpp"
+#include "material/band_state.hpp"
+#include "material/cracked_point.hpp"
 #include "material/driving_force.hpp"
 #include "material/effective_size.hpp"
 #include "material/snap_back_policy.hpp"
@@ -35,24 +37,6 @@ struct EnrichedParams {
   void validate() const;
 };
 
-// Everything a cracked point carries (72 bytes); an intact point carries none of it.
-struct BandState {
-  Vec2 crackNormal = Vec2::Zero();  // n, fixed at onset (first principal direction)
-  Vec2 jump = Vec2::Zero();         // [u] accumulated since onset (mm)
-  Voigt onsetStrain = Voigt::Zero();// strain of both phases at onset; eps_L = this + N [u] / h
-  double integrity = 1.0;           // x = 1 - D of the band
-  double volumeFraction = 0.0;      // f = h / H, Eq. (1)
-
-  double damage() const { return 1.0 - integrity; }
-  double normalJump() const { return crackNormal.dot(jump); }
-  Vec2 slidingDirection() const { return {-crackNormal[1], crackNormal[0]}; }
-};
-
-inline bool SecantResponse::builtFor(const BandState& b) const {
-  return integrity == b.integrity && volumeFraction == b.volumeFraction && crackNormal == b.crackNormal &&
-         onsetStrain == b.onsetStrain;
-}
-
 struct EnrichedState {
   Voigt strain = Voigt::Zero();         // macroscopic strain
   std::optional<BandState> band;        // present once the point has cracked
@@ -72,35 +56,14 @@ struct TwoBandEquilibrium {
   Mat4 jacobian = Mat4::Zero();                          // K = -d residual / d([u]_1, [u]_2), Eq. (9)
 };
 
-// Both phases at a trial (strain, jump): what Newton on traction continuity needs.
-struct BandEquilibrium {
-  Voigt bandStrain = Voigt::Zero();  // eps_L, Eq. (3) integrated
-  BandResponse band;                 // sigma_L and its tangent a_L^T, Eqs. (5), (11)
-  Voigt stress = Voigt::Zero();      // sigma = a_b : eps_b, Eq. (4) integrated
-  Vec2 residual = Vec2::Zero();      // (sigma - sigma_L) n, Eq. (6)
-  Mat2 jacobian = Mat2::Zero();      // K = -d residual / d[u] = C / (1 - f), Eq. (9)
-};
-
-// What the caller of an update needs besides the stress and the new state.
-struct UpdateOptions {
-  SnapBackPolicy snapBack = kDefaultSnapBack;  // material/snap_back_policy.hpp
-  bool tangent = true;  // the consistent tangent of Eq. (10); an explicit solver does not use it
-  // Bit i set: the caller holds Voigt stress component i fixed (mixed control) and solves for
-  // its strain. A state is then stable only if the consistent tangent's block of these
-  // components is positive definite as well as K of Eq. (9) (docs/model.md).
-  unsigned stressControlled = 0;
-  // A NotConverged update is retried in 2, 4, ... 2^substepLevels equal sub-steps (0: never).
-  // Only Material::update sub-steps (material/material.hpp); the TwoPhasePoint calls ignore it.
-  int substepLevels = 0;
-  // The crack normal a band that opens in this update takes (a caller that tracks crack paths:
-  // docs/model.md, "Crack paths"); nullptr: the first principal direction of the stress at onset.
-  const Vec2* onsetNormal = nullptr;
-  UpdateOptions() = default;
-  UpdateOptions(SnapBackPolicy policy, bool withTangent = true) : snapBack(policy), tangent(withTangent) {}  // NOLINT: implicit
-};
-
-class TwoPhasePoint {
+class TwoPhasePoint : public CrackedPoint<PlaneBand, TwoPhasePoint> {
  public:
+  // The one-band cracked update, the phases at a jump, Eq. (10), snap-back on the path and the
+  // release: material/cracked_point.hpp. Below, what is the plane point's own.
+  using CrackedPoint::consistentTangent;
+  using CrackedPoint::equilibrium;
+  using CrackedPoint::updateCracked;
+
   explicit TwoPhasePoint(const EnrichedParams& p);
 
   // The UMAT-style update of a point. On failure the state is left unchanged.
@@ -132,8 +95,6 @@ class TwoPhasePoint {
   bool staysIntact(const Voigt& s) const {
     return surelyIntact(s) || law_.drivingForceValue(s) < law_.onsetDrivingForce();
   }
-  UpdateResult updateCracked(BandState& band, Voigt& strain, const Voigt& strainIncrement,
-                             UpdateOptions options = {}) const;
   // The same with the band's secant response kept by the caller (an explicit solver, one per
   // band; material/secant_response.hpp): rebuilt when it is not the band's, then an unloading
   // increment takes it instead of the predictor's solve (the same state to round-off); a
@@ -182,25 +143,16 @@ class TwoPhasePoint {
   // releases (docs/model.md, "A second band").
   double storedEnergy(const BandState& first, const BandState* second, const Voigt& strain) const;
 
-  // Snap-back release: at the end strain of an increment whose loading branch turned back, the
-  // band's damage grows at fixed strain until traction continuity (6) holds with consistent
-  // damage (Y = F(x)) on a stable branch: the first such state below x0. Converged with
-  // `released` set, or SnapBack if none exists. The stored energy released beyond f int Y dD
-  // (the point's share of a dynamic snap) is not tracked by the point.
-  UpdateResult releaseSnapBack(BandState& band, Voigt& strain, const Voigt& strainIncrement, bool tangent = true) const;
 
-  // Pure evaluation of both phases at a trial jump (used by Newton and by opening control).
+  // Both phases at a trial jump, the band on its own loading surface.
   BandEquilibrium equilibrium(const BandState& band, const Voigt& strain, const Vec2& jump,
                               bool loadingTangent) const {
     return equilibrium(band, law_.loadingSurface(band.integrity), strain, jump, loadingTangent);
   }
-  BandEquilibrium equilibrium(const BandState& band, const BandDamageLaw::LoadingSurface& surface,
-                              const Voigt& strain, const Vec2& jump, bool loadingTangent) const;
-  // Consistent tangent d sigma / d eps at a converged equilibrium, Eq. (10).
+  // Eq. (10) at a converged equilibrium.
   Tangent consistentTangent(const BandState& band, const BandEquilibrium& eq) const {
     return consistentTangent(band, eq.jacobian);
   }
-  Tangent consistentTangent(const BandState& band, const Mat2& jacobian) const;
   // The secant tangent: Eq. (10) with the band's damage frozen at its integrity (the unloading
   // response). An implicit solver uses it where the consistent one makes Newton cycle.
   Tangent secantTangent(const BandState& band) const { return consistentTangent(band, secantJacobian(band, band.integrity)); }
@@ -215,33 +167,26 @@ class TwoPhasePoint {
   const Tangent& stiffness() const { return law_.stiffness(); }
   double bandWidth() const { return bandWidth_; }
   double tensileStrength() const { return law_.law().tensileStrength; }
+  double shearModulus() const { return shearModulus_; }
+  // The band law at a band strain, Eqs. (5), (11)-(13); Y of Eq. (12) at the band's a eps_L.
+  BandResponse evaluateBand(const BandDamageLaw::LoadingSurface& surface, const Voigt& bandStrain, bool loadingTangent) const {
+    return law_.evaluate(surface, bandStrain, loadingTangent);
+  }
+  double bandDrivingForce(const Voigt& aBand) const { return law_.drivingForceValue(aBand); }
 
-  // Snap-back on the path (docs/model.md): along the loading path from the converged state b to
-  // the jump `jump` (a straight segment in jump space, the band on the loading surface of b),
-  // the first fraction t in [0, 1] where the state stops being stable under the caller's
-  // control (K of Eq. (9), and the stress-controlled block of D of Eq. (10), positive
-  // definite): the limit point. nullopt if the path stays stable.
-  std::optional<double> firstUnstableOnPath(const BandState& b, const BandDamageLaw::LoadingSurface& surface,
-                                            const Vec2& jump, unsigned stressControlled = 0) const;
-  // The band's traction at its converged state is below kFailedTraction f_t'.
-  bool bandHasFailed(const BandState& b) const;
-  // K of Eq. (9) at a jump, the band on the given loading surface with its loading tangent.
-  Mat2 loadingJacobian(const BandState& b, const BandDamageLaw::LoadingSurface& surface, const Vec2& jump) const;
-  // Both > 0 where the state with this K is stable under the caller's control (scaled,
-  // continuous): the smallest real eigenvalue of K, and that of the stress-controlled block of D.
-  Vec2 stabilityMargins(const BandState& b, const Mat2& jacobian, unsigned stressControlled) const;
   // The smallest real eigenvalue of the stress-controlled block of a consistent tangent D
   // (Eq. (10)), scaled by E: > 0 where mixed control has a stable branch (docs/model.md).
   double stressControlledMargin(const Tangent& d, unsigned stressControlled) const;
 
-  // K of Eq. (9) with the band's damage frozen at x (a_L = x a): always positive definite.
-  Mat2 secantJacobian(const BandState& b, double x) const;
   // The solve with the secant K of Eq. (9) in closed form: n^T a n = mu I + (lambda + mu) n n^T
   // for the isotropic a, so K^-1 r = h / (f / (1 - f) + x) / mu [r - (lambda + mu) / (lambda + 2 mu) n (n . r)].
   Vec2 secantSolve(const BandState& b, double x, const Vec2& r) const {
     const double c = bandWidth_ / ((b.volumeFraction / (1.0 - b.volumeFraction) + x) * shearModulus_);
     return c * (r - acousticRatio_ * b.crackNormal.dot(r) * b.crackNormal);
   }
+  // The release's step to [u](x) at frozen damage x: K^-1 r through K's factorisation (the 3D
+  // point takes the closed form; both agree to round-off).
+  Vec2 secantStep(const BandState& b, double x, const Vec2& r) const { return secantJacobian(b, x).llt().solve(r); }
 
   static constexpr int kMaxIterations = 60;
   static constexpr double kRelativeTolerance = 1e-10;  // |residual| <= this * f_t' + kRoundOff |a eps|
@@ -287,14 +232,6 @@ class TwoPhasePoint {
   // The smaller stability margin of a two-band state (> 0: stable under the caller's control).
   double twoBandMargin(const BandState& first, const BandState& second, const Mat4& jacobian,
                        unsigned stressControlled) const;
-  // The traction tolerance of a cracked update at the elastic stress aEps = a eps.
-  double crackedTolerance(const Voigt& aEps, double f) const;
-  // The cracked update proper: elastic predictor, then damage corrector on the envelope.
-  UpdateResult predictCorrect(BandState& b, Voigt& strain, const Voigt& increment, bool tangent,
-                              unsigned stressControlled = 0) const;
-  // Commit a converged equilibrium (tangent Eq. (10), dissipation) or report NotConverged.
-  UpdateResult finishUpdate(BandState& b, Voigt& strain, const Voigt& eps, const Vec2& jump, const BandEquilibrium& eq,
-                            double thresholdOld, double tol, bool tangent, UpdateResult& res) const;
   UpdateResult updateIntactSlow(Voigt& strain, const Voigt& strainIncrement, const EffectiveSize& size,
                                 std::optional<BandState>& onset, UpdateOptions options,
                                 std::optional<BandState>* secondOnset) const;

@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "material/band_damage_law.hpp"
+#include "material/band_state.hpp"
 #include "material/driving_force_3d.hpp"
 #include "material/effective_size_3d.hpp"
 #include "material/two_phase_point.hpp"
@@ -15,39 +16,10 @@
 
 namespace ecm {
 
-// Everything a cracked 3D point carries; an intact point carries none of it.
-struct BandState3 {
-  Vec3 crackNormal = Vec3::Zero();      // n, fixed at onset (largest principal direction)
-  Vec3 jump = Vec3::Zero();             // [u] accumulated since onset (mm)
-  Voigt6 onsetStrain = Voigt6::Zero();  // strain of both phases at onset; eps_L = this + N [u] / h
-  double integrity = 1.0;               // x = 1 - D of the band
-  double volumeFraction = 0.0;          // f = h / H, Eq. (1)
-
-  double damage() const { return 1.0 - integrity; }
-  double normalJump() const { return crackNormal.dot(jump); }
-  Vec3 slidingJump() const { return jump - normalJump() * crackNormal; }
-};
-
-// The band law's response to a band strain (Eqs. (11)-(13)), from the surface of the increment.
-struct BandResponse3 {
-  Voigt6 stress = Voigt6::Zero();      // sigma_L = x a eps_L
-  Tangent6 tangent = Tangent6::Zero(); // a_L^T: loading (x a + a eps_L dx/deps) or secant (x a)
-  double integrity = 1.0;
-  double drivingForce = 0.0;           // Y
-  bool loading = false;
-};
-
-// Both phases at a trial (strain, jump).
-struct BandEquilibrium3 {
-  Voigt6 bandStrain = Voigt6::Zero();  // eps_L, Eq. (3)
-  BandResponse3 band;                  // Eqs. (5), (11)
-  Voigt6 stress = Voigt6::Zero();      // the bulk stress, Eq. (4)
-  Vec3 residual = Vec3::Zero();        // (sigma - sigma_L) n, Eq. (6): three equations
-  Mat3 jacobian = Mat3::Zero();        // K = -d residual / d[u], Eq. (9)
-};
-
-class TwoPhasePoint3D {
+class TwoPhasePoint3D : public CrackedPoint<SpaceBand, TwoPhasePoint3D> {
  public:
+  // The cracked update, the phases at a jump, Eq. (10), snap-back on the path and the release:
+  // material/cracked_point.hpp. Below, what is the point in space's own.
   // Throws ParameterError for a second band (not offered in 3D, docs/model.md).
   explicit TwoPhasePoint3D(const EnrichedParams& p);
 
@@ -71,20 +43,9 @@ class TwoPhasePoint3D {
     }
     return updateIntactSlow(strain, strainIncrement, size, onset, options);
   }
-  // Cracked point: predictor-corrector, then the snap-back policy. State unchanged on failure.
-  UpdateResult3 updateCracked(BandState3& band, Voigt6& strain, const Voigt6& strainIncrement,
-                              UpdateOptions options = {}) const;
-  // Snap-back release at the end strain (the 3D port of TwoPhasePoint::releaseSnapBack).
-  UpdateResult3 releaseSnapBack(BandState3& band, Voigt6& strain, const Voigt6& strainIncrement, bool tangent) const;
 
   BandResponse3 evaluateBand(const BandDamageLaw::LoadingSurface& surface, const Voigt6& bandStrain,
                              bool loadingTangent) const;
-  BandEquilibrium3 equilibrium(const BandState3& b, const BandDamageLaw::LoadingSurface& surface, const Voigt6& strain,
-                               const Vec3& jump, bool loadingTangent) const;
-  // Consistent tangent d sigma / d eps at a converged equilibrium with Jacobian K, Eq. (10).
-  Tangent6 consistentTangent(const BandState3& b, const Mat3& jacobian) const;
-  // K of Eq. (9) with the band's damage frozen at x.
-  Mat3 secantJacobian(const BandState3& b, double x) const;
   // The bulk stress and the stored energy (bulk and band, per unit volume) of a committed state.
   Voigt6 stress(const BandState3& b, const Voigt6& strain) const;
   double storedEnergy(const BandState3& b, const Voigt6& strain) const;
@@ -93,15 +54,7 @@ class TwoPhasePoint3D {
   // The crack normal at onset: the largest principal direction of a : strain, canonical sign.
   Vec3 onsetNormal(const Voigt6& strain) const;
 
-  // Snap-back on the path (docs/model.md): the first fraction of the jump segment from b.jump
-  // to `jump` where K of Eq. (9), or the stress-controlled block of D (Eq. (10)), stops being
-  // positive definite; nullopt if the path stays stable.
-  std::optional<double> firstUnstableOnPath(const BandState3& b, const BandDamageLaw::LoadingSurface& surface,
-                                            const Vec3& jump, unsigned stressControlled = 0) const;
-  // Scaled smallest real eigenvalues of K and of the stress-controlled block of D (> 0: stable).
-  Eigen::Vector2d stabilityMargins(const BandState3& b, const Mat3& jacobian, unsigned stressControlled) const;
   double stressControlledMargin(const Tangent6& d, unsigned stressControlled) const;
-  bool bandHasFailed(const BandState3& b) const;
 
   const Tangent6& stiffness() const { return stiffness_; }
   const BandDamageLaw& bandLaw() const { return law_; }
@@ -109,18 +62,20 @@ class TwoPhasePoint3D {
   double tensileStrength() const { return law_.law().tensileStrength; }
   double youngsModulus() const { return e_; }
   double poissonRatio() const { return nu_; }
-
- private:
-  UpdateResult3 updateIntactSlow(Voigt6& strain, const Voigt6& strainIncrement, const EffectiveSize3& size,
-                                 std::optional<BandState3>& onset, UpdateOptions options) const;
-  UpdateResult3 predictCorrect(BandState3& b, Voigt6& strain, const Voigt6& increment, bool tangent,
-                               unsigned stressControlled) const;
-  double crackedTolerance(const Voigt6& aEps, double f) const;
+  double shearModulus() const { return shearModulus_; }
+  // Y of Eq. (12) over the three principal values of the band's effective stress a eps_L.
+  double bandDrivingForce(const Voigt6& aBand) const { return drivingForceValue3(aBand, e_, nu_); }
   // The closed-form solve with the secant K of Eq. (9): n^T a n = mu I + (lambda + mu) n n^T.
   Vec3 secantSolve(const BandState3& b, double x, const Vec3& r) const {
     const double c = bandWidth_ / ((b.volumeFraction / (1.0 - b.volumeFraction) + x) * shearModulus_);
     return c * (r - acousticRatio_ * b.crackNormal.dot(r) * b.crackNormal);
   }
+  // The release's step to [u](x) at frozen damage x: the closed form (the 2D point factorises K).
+  Vec3 secantStep(const BandState3& b, double x, const Vec3& r) const { return secantSolve(b, x, r); }
+
+ private:
+  UpdateResult3 updateIntactSlow(Voigt6& strain, const Voigt6& strainIncrement, const EffectiveSize3& size,
+                                 std::optional<BandState3>& onset, UpdateOptions options) const;
 
   BandDamageLaw law_;  // the scalar law F(x) of Eq. (13), its inverse and its dissipation
   double e_, nu_, bandWidth_;

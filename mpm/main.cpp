@@ -7,6 +7,7 @@
 // 10-20 the run failed, one status per failure kind (mpm/core/errors.hpp; summary.json's
 // failure.kind names it).
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -16,6 +17,7 @@
 
 #include "io/checksum.hpp"
 #include "io/cli_exit.hpp"
+#include "io/command_line.hpp"
 #include "io/output_error.hpp"
 #include "io/yaml_input.hpp"
 #include "mpm/output/checkpoint_codec.hpp"
@@ -87,14 +89,7 @@ int main(int argc, char** argv) {
   app.add_flag("--no-vtu", noVtu, "do not write VTU particle snapshots");
   app.add_flag("--no-plot", noPlot, "do not render the load-displacement PNG");
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
-  app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return ecm::io::errorLine("ecm-mpm", e.what()) + "Run with --help for more information.\n";
-  });
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return ecm::io::commandLineStatus(app.exit(e));
-  }
+  if (const std::optional<int> status = ecm::io::parseCommandLine(app, "ecm-mpm", argc, argv)) return *status;
 
   try {
     ecm::mpm::Scene scene = ecm::mpm::loadSceneFile(scenePath);

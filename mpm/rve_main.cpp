@@ -7,11 +7,13 @@
 // phases.png (+ .gp). Exit status (io/cli_exit.hpp): 0 written, 1 an output could not be written
 // (what was written is kept), 2 bad input (infeasible target included) or output folder.
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <cstdio>
 #include <exception>
 #include <nlohmann/json.hpp>
 
 #include "io/cli_exit.hpp"
+#include "io/command_line.hpp"
 #include "io/csv_writer.hpp"
 #include "io/gnuplot.hpp"
 #include "io/json_summary.hpp"
@@ -141,14 +143,7 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   app.add_option("-o,--out", out, "output folder (default: rve-out)");
-  app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return ecm::io::errorLine("ecm-rve", e.what()) + "Run with --help for more information.\n";
-  });
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return ecm::io::commandLineStatus(app.exit(e));
-  }
+  if (const std::optional<int> status = ecm::io::parseCommandLine(app, "ecm-rve", argc, argv)) return *status;
   bool running = false;
   try {
     return run(input, out, running);

@@ -16,6 +16,7 @@
 # $RVE_BIN (default ./build/mpm/ecm-mpm). Shell, awk and gnuplot only.
 set -uo pipefail
 cd "$(dirname "$0")/.."
+source scripts/lib/mpm_runs.sh  # failureKind, runStatus
 out=${1:-results/rve}
 shift || true
 [[ $# -gt 0 ]] || set -- coarse
@@ -49,13 +50,6 @@ sceneOf() {
   echo "$out/scenes/rve-$1.yaml"
 }
 
-# ", KIND" of a failed run's summary.json (failure.kind; docs/tools.md, "When a run fails"), or nothing.
-failureKind() {
-  local k
-  k=$(grep -m1 -o '"kind": *"[a-z_]*"' "$1/summary.json" 2>/dev/null | sed 's/.*"\([a-z_]*\)"$/\1/') || true
-  [[ -n $k ]] && echo ", $k"
-  return 0
-}
 failed=()  # the runs of this call that did not complete (listed at the end; the exit status is 1)
 for m in "${runs[@]}"; do
   scene=$(sceneOf "$m")
@@ -63,12 +57,7 @@ for m in "${runs[@]}"; do
   rm -f "$out/$m"/{history.csv,summary.json,particles_*.csv}
   $bin "$scene" --out "$out/$m" --no-vtu --threads "$threads" -q
   rc=$?
-  case $rc in  # ecm-mpm's exit status (README, "Exit status")
-    0 | 1 | 1[0-9] | 20) ;;  # completed, or failed with its outputs kept (10-20: the failure's kind): in the table with its status
-    2) echo "error: ecm-mpm could not run $scene (bad input, status 2)" >&2 ;;
-    3) echo "warning: ecm-mpm stopped $scene with a checkpoint in $out/$m (resume with --restart)" >&2 ;;
-    *) echo "error: ecm-mpm ended $scene with status $rc" >&2 ;;
-  esac
+  runStatus "$rc" "$scene" "$out/$m"
   [[ $rc == 0 ]] || failed+=("$m (exit $rc$(failureKind "$out/$m"): $out/$m/summary.json)")
 done
 

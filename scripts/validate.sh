@@ -25,6 +25,7 @@
 # fail: they are reported, not counted, and one that completes is counted (take it off the list).
 set -uo pipefail
 cd "$(dirname "$0")/.."
+source scripts/lib/mpm_runs.sh  # failureKind
 out=${1:-results/validation}
 shift || true
 [[ $# -gt 0 ]] || set -- quick
@@ -123,13 +124,6 @@ variant() {
   echo "$out/scenes/$name.yaml"
 }
 
-# ", KIND" of a failed run's summary.json (failure.kind; docs/tools.md, "When a run fails"), or nothing.
-failureKind() {
-  local k
-  k=$(grep -m1 -o '"kind": *"[a-z_]*"' "$1/summary.json" 2>/dev/null | sed 's/.*"\([a-z_]*\)"$/\1/') || true
-  [[ -n $k ]] && echo ", $k"
-  return 0
-}
 failed=()
 for r in "${runs[@]}"; do
   s=${scene[$r]}

@@ -3,11 +3,13 @@
 // Exit status (io/cli_exit.hpp): 0 every run completed, 1 some run failed (see study.csv) or an
 // output could not be written once the runs had begun, 2 bad input or output folder.
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <cstdio>
 #include <exception>
 #include <iostream>
 
 #include "io/cli_exit.hpp"
+#include "io/command_line.hpp"
 #include "io/output_dir.hpp"
 #include "io/output_error.hpp"
 #include "study/study.hpp"
@@ -24,14 +26,7 @@ int main(int argc, char** argv) {
   app.add_flag("--resume", resume, "reuse the MPM runs of DIR whose scene is unchanged (an interrupted study goes on)");
   app.add_flag("--in-process", inProcess, "run MPM scenes in this process (no per-run peak memory)");
   app.add_flag("-q,--quiet", quiet, "no line per run on stderr");
-  app.failure_message([](const CLI::App*, const CLI::Error& e) {
-    return ecm::io::errorLine("ecm-study", e.what()) + "Run with --help for more information.\n";
-  });
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return ecm::io::commandLineStatus(app.exit(e));
-  }
+  if (const std::optional<int> status = ecm::io::parseCommandLine(app, "ecm-study", argc, argv)) return *status;
 
   bool running = false;  // input read and output folder ready: a failure from here on is the runs'
   try {

@@ -1,7 +1,8 @@
 #pragma once
 // Runs one of the tools as a user does (std::system, the binary's path from a compile definition
 // such as ECM_MPM) and keeps its exit status, stdout and stderr. The exit statuses are those of
-// io/cli_exit.hpp: 0 done, 1 run failed or stopped early, 2 bad input, 3 stopped with a checkpoint.
+// io/cli_exit.hpp: 0 done, 1 run failed or stopped early, 2 bad input, 3 stopped with a checkpoint,
+// 10-20 an ecm-mpm run failed (one status per failure kind).
 #include <sys/wait.h>
 
 #include <cstdlib>

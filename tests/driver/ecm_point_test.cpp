@@ -1,5 +1,5 @@
 // End to end: the ecm-point tool's exit status (io/cli_exit.hpp): 0 done, 1 the run stopped
-// early (outputs kept), 2 bad input (a missing file, a bad value, a bad command line).
+// early (outputs kept), 2 bad input (a bad value here; a missing file and a bad command line: tests/cli).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -12,11 +12,7 @@ namespace ecm::driver::test {
 namespace {
 
 namespace fs = std::filesystem;
-using ecm::test::expectContains;
-using ecm::test::runTool;
-using ecm::test::shellQuoted;
-using ecm::test::TempDir;
-using ecm::test::ToolRun;
+using namespace ecm::test;  // expectContains, runTool, shellQuoted, TempDir, ToolRun
 
 ToolRun point(const std::string& args, const TempDir& tmp) { return runTool(ECM_POINT, args, tmp.path()); }
 
@@ -26,46 +22,12 @@ std::string tensionScene(double size, const std::string& extra = "") {
          "path: {preset: uniaxial_tension, strain: 1.0e-3, increments: 100}\n";
 }
 
-TEST(EcmPoint, AMissingSceneFileIsBadInput) {
-  TempDir tmp;
-  const ToolRun r = point(shellQuoted(tmp.path() / "no-such-scene.yaml"), tmp);
-  EXPECT_EQ(r.status, ecm::io::kExitBadInput) << r.err;
-  expectContains(r.err, "no-such-scene.yaml");  // CLI11's message
-}
-
-TEST(EcmPoint, AMissingStudyFileIsBadInput) {
-  TempDir tmp;
-  const ToolRun r = point("--study " + shellQuoted(tmp.path() / "no-such-study.yaml"), tmp);
-  EXPECT_EQ(r.status, ecm::io::kExitBadInput) << r.err;
-  expectContains(r.err, "no-such-study.yaml");
-}
-
-TEST(EcmPoint, ABadCommandLineIsBadInputAndHelpIsDone) {
-  TempDir tmp;
-  EXPECT_EQ(point("", tmp).status, ecm::io::kExitBadInput);  // neither a scene nor --study
-  const ToolRun unknown = point("--no-such-option", tmp);
-  EXPECT_EQ(unknown.status, ecm::io::kExitBadInput);
-  expectContains(unknown.err, "no-such-option");
-  const ToolRun help = point("--help", tmp);
-  EXPECT_EQ(help.status, ecm::io::kExitDone);
-  expectContains(help.out, "--study");
-}
-
 TEST(EcmPoint, ABadSceneValueIsBadInputWithTheLine) {
   TempDir tmp;
   const fs::path scene = tmp.write("bad.yaml", tensionScene(10.0, "colour: red\n"));
   const ToolRun r = point(shellQuoted(scene) + " --out " + shellQuoted(tmp.path() / "out"), tmp);
   EXPECT_EQ(r.status, ecm::io::kExitBadInput);
   expectContains(r.err, "bad.yaml:4: unknown key 'colour'");
-}
-
-TEST(EcmPoint, AnOutputFolderThatCannotBeUsedIsBadInput) {
-  TempDir tmp;
-  const fs::path scene = tmp.write("tension.yaml", tensionScene(10.0));
-  const fs::path file = tmp.write("a-file", "not a folder\n");
-  const ToolRun r = point(shellQuoted(scene) + " --out " + shellQuoted(file), tmp);
-  EXPECT_EQ(r.status, ecm::io::kExitBadInput);
-  expectContains(r.err, "a-file");
 }
 
 TEST(EcmPoint, ACompletedRunIsDone) {

@@ -18,15 +18,9 @@ namespace ecm::driver {
 namespace {
 
 MaterialParams concrete(ModelKind kind, double nu = test::kNu) {
-  MaterialParams p;
-  p.name = "den-concrete";
-  p.model = kind;
-  p.elastic = {test::kE, nu, Hypothesis::PlaneStress};
-  p.tensileStrength = test::kFt;
-  p.softeningModulus = test::kEp;
-  p.softeningExponent = test::kN;
-  p.bandWidth = test::kBandWidth;
-  p.fractureEnergy = test::kGF;
+  MaterialParams p{.name = "den-concrete", .model = kind, .elastic = {test::kE, nu, Hypothesis::PlaneStress},
+                   .tensileStrength = test::kFt, .softeningModulus = test::kEp, .softeningExponent = test::kN,
+                   .bandWidth = test::kBandWidth, .fractureEnergy = test::kGF};
   return p;
 }
 
@@ -317,15 +311,10 @@ TEST(PointDriver, HistoryAndSummaryShowTheSecondBand) {
 // stress to eps_xx = 1.0131e-4 in 100 increments, then d eps_xx = d eps_yy = d gamma_xy / 2 to
 // (2.0381e-4, 8.7378e-5, 2.05e-4) in 100 increments.
 MaterialParams loadedFirstBandMaterial() {
-  MaterialParams p;
-  p.name = "second-band-beside-a-loaded-first";
-  p.model = ModelKind::Enriched;
-  p.elastic = {25000.0, 0.15, Hypothesis::PlaneStress};
-  p.tensileStrength = 2.5;
-  p.softeningModulus = 12.0;
-  p.softeningExponent = 0.2;
-  p.bandWidth = 0.1;
-  p.secondBand = SecondBandOption::Orthogonal;
+  MaterialParams p{.name = "second-band-beside-a-loaded-first", .model = ModelKind::Enriched,
+                   .elastic = {25000.0, 0.15, Hypothesis::PlaneStress}, .tensileStrength = 2.5,
+                   .softeningModulus = 12.0, .softeningExponent = 0.2, .bandWidth = 0.1,
+                   .secondBand = SecondBandOption::Orthogonal};
   return p;
 }
 const Voigt kLoadedFirstBandEnd(2.0381e-4, 8.7378e-5, 2.05e-4);

@@ -11,10 +11,7 @@
 namespace ecm::io {
 namespace {
 
-using test::expectContains;
-using test::inputError;
-using test::readFile;
-using test::TempDir;
+using namespace ecm::test;  // expectContains, inputError, readFile, TempDir
 
 TEST(CsvWriter, WritesHeaderAndRowsAtFullPrecision) {
   const TempDir dir;

@@ -8,10 +8,7 @@
 namespace ecm::io {
 namespace {
 
-using test::expectContains;
-using test::inputError;
-using test::readFile;
-using test::TempDir;
+using namespace ecm::test;  // expectContains, inputError, readFile, TempDir
 
 const std::filesystem::path kData = std::filesystem::path(ECM_SOURCE_DIR) / "data";
 

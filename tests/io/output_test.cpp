@@ -17,9 +17,7 @@
 namespace ecm::io {
 namespace {
 
-using test::expectContains;
-using test::readFile;
-using test::TempDir;
+using namespace ecm::test;  // expectContains, readFile, TempDir
 
 TEST(OutputDir, CreatesNestedFoldersAndLeavesNoProbe) {
   const TempDir dir;

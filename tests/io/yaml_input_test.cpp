@@ -11,9 +11,7 @@
 namespace ecm::io {
 namespace {
 
-using test::inputError;
-using test::TempDir;
-using test::expectContains;
+using namespace ecm::test;  // inputError, TempDir, expectContains
 
 // Checks file, 1-based line and that the message starts with "FILE:LINE: " and names `needle`.
 void expectAt(const InputError& e, const std::string& file, int line, const std::string& needle) {

@@ -59,14 +59,9 @@ struct Counts {
 
 void checkModel(ModelKind kind, Hypothesis hyp, SecondBandOption option, std::uint64_t seed, Counts& counts) {
   PathGenerator gen(seed);
-  MaterialParams p;
-  p.model = kind;
-  p.elastic = {test::kE, test::kNu, hyp};
-  p.tensileStrength = test::kFt;
-  p.softeningModulus = test::kEp;
-  p.softeningExponent = test::kN;
-  p.bandWidth = test::kBandWidth;
-  p.secondBand = option;
+  MaterialParams p{.model = kind, .elastic = {test::kE, test::kNu, hyp}, .tensileStrength = test::kFt,
+                   .softeningModulus = test::kEp, .softeningExponent = test::kN, .bandWidth = test::kBandWidth,
+                   .secondBand = option};
   const Material m(p);
   const Tangent compliance = elasticCompliance(p.elastic);
   const double onsetY = test::kFt * test::kFt / (2.0 * test::kE);

@@ -21,14 +21,9 @@ namespace ecm {
 namespace {
 
 MaterialParams concrete(SecondBandOption option, double nu = test::kNu) {
-  MaterialParams p;
-  p.model = ModelKind::Enriched;
-  p.elastic = {test::kE, nu, Hypothesis::PlaneStress};
-  p.tensileStrength = test::kFt;
-  p.softeningModulus = test::kEp;
-  p.softeningExponent = test::kN;
-  p.bandWidth = test::kBandWidth;
-  p.secondBand = option;
+  MaterialParams p{.model = ModelKind::Enriched, .elastic = {test::kE, nu, Hypothesis::PlaneStress},
+                   .tensileStrength = test::kFt, .softeningModulus = test::kEp, .softeningExponent = test::kN,
+                   .bandWidth = test::kBandWidth, .secondBand = option};
   return p;
 }
 
@@ -405,14 +400,10 @@ TEST(SecondBand, ASecondBandNextToANearlyFailedFirstBandIsReleasedWithTheFirstUn
 // stress (both planes are free: sigma . n1 = sigma . n2 = 0, which in the plane is sigma = 0) and
 // leave the jumps where they are but for the bulk strain's increment.
 TEST(SecondBand, TwoFailedBandsTakeAnIncrementWithoutDriftingAlongTheirFreeSliding) {
-  MaterialParams params;
-  params.model = ModelKind::Enriched;
-  params.elastic = {25850.0, 0.18, Hypothesis::PlaneStress};
-  params.tensileStrength = 2.7;
-  params.softeningModulus = 56.997193986047456;
-  params.softeningExponent = 0.28262042959628364;
-  params.bandWidth = 0.05;
-  params.secondBand = SecondBandOption::Orthogonal;
+  MaterialParams params{.model = ModelKind::Enriched, .elastic = {25850.0, 0.18, Hypothesis::PlaneStress},
+                        .tensileStrength = 2.7, .softeningModulus = 56.997193986047456,
+                        .softeningExponent = 0.28262042959628364, .bandWidth = 0.05,
+                        .secondBand = SecondBandOption::Orthogonal};
   const Material m(params);
   MaterialPoint p;
   p.strain = Voigt(-0.0011889342149273385, 0.0012405322354986656, -0.00090769622098186328);
@@ -453,14 +444,11 @@ TEST(SecondBand, TwoFailedBandsTakeAnIncrementWithoutDriftingAlongTheirFreeSlidi
 // act in series, and the bands are softer than the bulk), and no move along the free sliding
 // (jumps dj1 = s t1, dj2 = s n1 with n2 = -t1 leave f1 N1 dj1 + f2 N2 dj2 = 0 for f1 = f2).
 TEST(SecondBand, ASingularJacobianBeforeTheBandsHaveFailedGivesAFiniteTangent) {
-  MaterialParams params;
-  params.model = ModelKind::Enriched;
-  params.elastic = {1.0552279927159722, 0.48999999999999999, Hypothesis::PlaneStress};
-  params.tensileStrength = 958.10809901387108;
-  params.softeningModulus = 0.0010136901849807907;
-  params.softeningExponent = 0.20915161364156559;
-  params.bandWidth = 1e-4;
-  params.secondBand = SecondBandOption::Orthogonal;
+  MaterialParams params{.model = ModelKind::Enriched,
+                        .elastic = {1.0552279927159722, 0.48999999999999999, Hypothesis::PlaneStress},
+                        .tensileStrength = 958.10809901387108, .softeningModulus = 0.0010136901849807907,
+                        .softeningExponent = 0.20915161364156559, .bandWidth = 1e-4,
+                        .secondBand = SecondBandOption::Orthogonal};
   const Material m(params);
   MaterialPoint p;
   p.strain = Voigt(17647319.644702025, 13395197.587333787, 14336368.700881021);

@@ -45,13 +45,8 @@ struct Point {
 };
 
 MaterialParams params(ModelKind kind, Hypothesis hyp = Hypothesis::PlaneStress) {
-  MaterialParams p;
-  p.model = kind;
-  p.elastic = {test::kE, test::kNu, hyp};
-  p.tensileStrength = test::kFt;
-  p.softeningModulus = test::kEp;
-  p.softeningExponent = test::kN;
-  p.bandWidth = test::kBandWidth;
+  MaterialParams p{.model = kind, .elastic = {test::kE, test::kNu, hyp}, .tensileStrength = test::kFt,
+                   .softeningModulus = test::kEp, .softeningExponent = test::kN, .bandWidth = test::kBandWidth};
   return p;
 }
 

@@ -19,14 +19,12 @@
 #include "mpm/output/run_files.hpp"
 #include "mpm/run.hpp"
 #include "test_scenes.hpp"
+#include "run_helpers.hpp"
 
 namespace ecm::mpm::test {
 namespace {
 
-using ecm::test::expectContains;
-using ecm::test::FileSizeLimit;
-using ecm::test::readFile;
-using ecm::test::TempDir;
+using namespace ecm::test;  // expectContains, FileSizeLimit, readFile, TempDir
 namespace fs = std::filesystem;
 
 // A notched block of the paper's concrete, pulled at the top by a velocity ramp and pushed
@@ -43,11 +41,9 @@ Scene crackingBlock() {
 }
 
 RunOptions options(const fs::path& dir, int threads = 1) {
-  RunOptions o;
-  o.outputDir = dir;
+  RunOptions o = quietRun(dir);
+  o.snapshots = true;
   o.threads = threads;
-  o.plot = false;
-  o.progress = false;
   return o;
 }
 

@@ -24,12 +24,7 @@ Scene crackingBlock(int cells) {
   Scene s;
   s.name = "cracking-block";
   s.grid = {Vec2::Zero(), Vec2(h, h), cells, cells + 2};
-  MaterialParams strong = paperConcrete();
-  strong.elastic.poissonRatio = 0.0;
-  MaterialParams weak = strong;
-  weak.name = "weak";
-  weak.tensileStrength = kWeakFt;
-  s.materials = {strong, weak};
+  s.materials = concreteWithWeakRow(kWeakFt);
   s.bodies = {{Shape::rectangle(Vec2(0.0, 0.0), Vec2(kLength, kLength)), 0, false, Vec2::Zero()},
               {Shape::rectangle(Vec2(-1.0, 40.0), Vec2(kLength + 1.0, 50.0)), 1, false, Vec2::Zero()}};
   s.conditions = {NodeCondition::fixed("base", {Vec2(-1.0, 0.0), Vec2(kLength + 1.0, 0.0)}, false, true),

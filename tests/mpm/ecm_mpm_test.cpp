@@ -16,12 +16,7 @@ namespace ecm::mpm::test {
 namespace {
 
 namespace fs = std::filesystem;
-using ecm::test::expectContains;
-using ecm::test::readFile;
-using ecm::test::runTool;
-using ecm::test::shellQuoted;
-using ecm::test::TempDir;
-using ecm::test::ToolRun;
+using namespace ecm::test;  // expectContains, readFile, runTool, shellQuoted, TempDir, ToolRun
 
 const fs::path kBlock = fs::path(ECM_SOURCE_DIR) / "data" / "mpm" / "tension-block.yaml";
 
@@ -42,24 +37,13 @@ const char* kThrownSquare =
     "end_time: 1.0e-4\n"
     "output_interval: 1.0e-6\n";
 
-TEST(EcmMpm, AMissingSceneFileIsBadInput) {
+// (A missing scene, an unknown option, --help and an output folder that is a file: tests/cli.)
+TEST(EcmMpm, ThreadsOutOfRangeAndAnUnknownPresetAreBadInput) {
   TempDir tmp;
-  const ToolRun r = mpm(shellQuoted(tmp.path() / "no-such-scene.yaml"), tmp);
-  EXPECT_EQ(r.status, ecm::io::kExitBadInput) << r.err;  // CLI11 alone would exit 105
-  expectContains(r.err, "no-such-scene.yaml");           // CLI11's message
-}
-
-TEST(EcmMpm, ABadCommandLineIsBadInputAndHelpIsDone) {
-  TempDir tmp;
-  EXPECT_EQ(mpm("", tmp).status, ecm::io::kExitBadInput);  // no scene
   const ToolRun threads = mpm(shellQuoted(kBlock) + " --threads=-1", tmp);
   EXPECT_EQ(threads.status, ecm::io::kExitBadInput);
   expectContains(threads.err, "threads");
   EXPECT_EQ(mpm(shellQuoted(kBlock) + " --preset no-such-preset", tmp).status, ecm::io::kExitBadInput);
-  EXPECT_EQ(mpm(shellQuoted(kBlock) + " --no-such-option", tmp).status, ecm::io::kExitBadInput);
-  const ToolRun help = mpm("--help", tmp);
-  EXPECT_EQ(help.status, ecm::io::kExitDone);
-  expectContains(help.out, "--restart");
 }
 
 TEST(EcmMpm, ABadSceneValueIsBadInputWithTheLine) {
@@ -68,14 +52,6 @@ TEST(EcmMpm, ABadSceneValueIsBadInputWithTheLine) {
   const ToolRun r = mpm(shellQuoted(scene) + " -q --out " + shellQuoted(tmp.path() / "out"), tmp);
   EXPECT_EQ(r.status, ecm::io::kExitBadInput);
   expectContains(r.err, "bad.yaml:12: unknown key 'colour'");
-}
-
-TEST(EcmMpm, AnOutputFolderThatCannotBeUsedIsBadInput) {
-  TempDir tmp;
-  const fs::path file = tmp.write("a-file", "not a folder\n");
-  const ToolRun r = mpm(shellQuoted(kBlock) + " -q --no-vtu --no-plot --out " + shellQuoted(file), tmp);
-  EXPECT_EQ(r.status, ecm::io::kExitBadInput);
-  expectContains(r.err, "a-file");
 }
 
 // The status names the failure's kind (io/cli_exit.hpp, mpm/core/errors.cpp): 10, left_grid.
@@ -105,13 +81,6 @@ TEST(EcmMpm, MaxStepsStopsWithACheckpointThatResumesToCompletion) {
   const ToolRun resumed = mpm(args + " --restart " + shellQuoted(out), tmp);
   EXPECT_EQ(resumed.status, ecm::io::kExitDone) << resumed.err;
   EXPECT_FALSE(fs::exists(out / "checkpoint.bin"));  // a completed run removes it
-}
-
-TEST(EcmRve, AMissingInputFileIsBadInput) {
-  TempDir tmp;
-  const ToolRun r = runTool(ECM_RVE, shellQuoted(tmp.path() / "no-such-rve.yaml"), tmp.path());
-  EXPECT_EQ(r.status, ecm::io::kExitBadInput) << r.err;
-  expectContains(r.err, "no-such-rve.yaml");
 }
 
 TEST(EcmRve, ABadValueIsBadInputWithTheLine) {

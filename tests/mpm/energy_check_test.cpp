@@ -9,6 +9,7 @@
 #include "mpm/explicit/energy_check.hpp"
 #include "mpm/run.hpp"
 #include "mpm/scene/scene_yaml.hpp"
+#include "run_helpers.hpp"
 
 namespace ecm::mpm {
 namespace {
@@ -33,16 +34,11 @@ TEST(EnergyCheck, TheDampingMayTakeWhatWasPutInAndPutNothingIn) {
 // stops loudly at the first row where the damping's work is beyond what was put in, before a
 // particle leaves the grid (step 22 without the check), and keeps that row.
 TEST(EnergyCheck, AnUnstableStepStopsTheRunAtItsRow) {
-  test::TempDir tmp;
+  ecm::test::TempDir tmp;
   Scene s = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data/validation/lpanel-coarse.yaml");
   s.solver.explicitScheme.cfl = 1.0;
   s.outputInterval = 1e-9;  // every step
-  RunOptions o;
-  o.outputDir = tmp.path() / "out";
-  o.plot = false;
-  o.progress = false;
-  o.snapshots = false;
-  o.threads = 1;
+  RunOptions o = test::quietRun(tmp.path() / "out");
   const RunResult r = runScene(s, o);
   ASSERT_FALSE(r.completed);
   ASSERT_TRUE(r.failure);

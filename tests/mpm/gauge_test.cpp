@@ -9,31 +9,17 @@
 
 #include "../io/temp_dir.hpp"
 #include "run_helpers.hpp"
+#include "test_scenes.hpp"
 #include "mpm/run.hpp"
 #include "mpm/scene/scene_yaml.hpp"
 
 namespace ecm::mpm::test {
 namespace {
 
-using ecm::test::expectContains;
-using ecm::test::inputError;
+using namespace ecm::test;  // expectContains, inputError
 
-// A 10 x 10 mm elastic block (nu 0, 2 x 2 particles per 10 mm cell: particles at 2.5 and 7.5 mm)
-// whose top is pulled 0.01 mm: a uniform strain of 1e-3.
-const char* kBlock = R"(name: gauge-block
-grid: {origin: [-10, -10], cell_size: [10, 10], cells: [3, 3]}
-thickness: 1
-particles_per_cell: 2
-materials:
-  - {name: e, model: linear_elastic, hypothesis: plane_stress, youngs_modulus: 1000, poisson_ratio: 0.0, density: 1e-9}
-bodies:
-  - {rectangle: {min: [0, 0], max: [10, 10]}, material: e}
-end_time: 1
-conditions:
-  - {name: base, box: {min: [-1, 0], max: [11, 0]}, fixed: [y]}
-  - {name: corner, box: {min: [-1, -1], max: [0, 0]}, fixed: [x]}
-  - {name: top, box: {min: [-1, 10], max: [11, 10]}, displacement: {y: {type: linear_ramp, value: 0.01, time: 1}}}
-gauges:
+// The pulled block (test_scenes.hpp: a uniform strain of 1e-3) with two gauges.
+const std::string kBlock = pulledBlockYaml("gauge-block") + R"(gauges:
   - {name: extensometer, at: [2.4, 2.6], to: [2.6, 7.4], component: y}   # the seeds at (2.5, 2.5) and (2.5, 7.5)
   - {name: upper, at: [7.5, 7.5], component: y}
 )";
@@ -59,11 +45,8 @@ TEST(Gauge, AnExtensometerAcrossAUniformlyStrainedBlockReadsEpsTimesItsLengthImp
 TEST(Gauge, AnExtensometerInAnAffineFieldReadsEpsTimesItsLengthExplicit) {
   Scene s;
   s.grid = {Vec2(-10.0, -10.0), Vec2(10.0, 10.0), 3, 3};
-  MaterialParams m;
-  m.name = "e";
-  m.model = ModelKind::LinearElastic;
-  m.elastic = {1000.0, 0.0, Hypothesis::PlaneStress};
-  m.density = 1e-9;
+  MaterialParams m{.name = "e", .model = ModelKind::LinearElastic, .elastic = {1000.0, 0.0, Hypothesis::PlaneStress},
+                   .density = 1e-9};
   s.materials = {m};
   s.bodies = {{Shape::rectangle(Vec2(0.0, 0.0), Vec2(10.0, 10.0)), 0, false, Vec2::Zero()}};
   const double rate = 1.0;  // 1/s

@@ -9,6 +9,7 @@
 
 #include "../io/temp_dir.hpp"
 #include "run_helpers.hpp"
+#include "test_scenes.hpp"
 #include "mpm/explicit/explicit_checkpoint.hpp"
 #include "mpm/run.hpp"
 #include "mpm/scene/scene_yaml.hpp"
@@ -16,8 +17,7 @@
 namespace ecm::mpm::test {
 namespace {
 
-using ecm::test::expectContains;
-using ecm::test::inputError;
+using namespace ecm::test;  // expectContains, inputError
 
 std::string shippedBar() {
   std::ifstream in(std::filesystem::path(ECM_SOURCE_DIR) / "data" / "mpm" / "bar-snapback-implicit.yaml");
@@ -36,11 +36,8 @@ TEST(ImplicitScene, TheShippedBarRunsThroughItsPeakWithItsEnergyBalanced) {
   const Scene scene = readScene(io::parseYaml(text, "bar.yaml"));
   ASSERT_TRUE(scene.solver.implicit && scene.solver.implicit->indirect);
   ecm::test::TempDir dir;
-  RunOptions options;
-  options.outputDir = dir.path() / "out";
-  options.threads = 1;
-  options.progress = false;
-  options.plot = false;
+  RunOptions options = quietRun(dir.path() / "out");
+  options.snapshots = true;
   const RunResult r = runScene(scene, options);
   ASSERT_TRUE(r.completed) << r.message();
   EXPECT_EQ(r.steps, 200);
@@ -111,13 +108,8 @@ std::string fileText(const std::filesystem::path& path) {
 // Returns the uninterrupted run's history.csv.
 std::string expectRestartIsBitwise(const Scene& scene, long stopAt, long end) {
   ecm::test::TempDir dir;
-  RunOptions options;
-  options.progress = false;
-  options.plot = false;
-  options.snapshots = false;
+  RunOptions options = quietRun(dir.path() / "whole");
   options.sceneHash = 42;
-  options.outputDir = dir.path() / "whole";
-  options.threads = 1;
   options.maxSteps = end;
   const RunResult whole = runScene(scene, options);
   EXPECT_TRUE(whole.stopped) << whole.message();
@@ -191,11 +183,7 @@ TEST(ImplicitScene, AStalledNewtonIsKeptBelowTheAcceptToleranceAndStopsTheRunAbo
   const std::string bar = replaced(replaced(shippedBar(), "until: 0.04 ", "until: 0.0002"),  // 20 elastic steps or more
                                    "  control:", "  max_iterations: 2\n  max_halvings: 2\n  control:");
   ecm::test::TempDir dir;
-  RunOptions options;
-  options.progress = false;
-  options.plot = false;
-  options.snapshots = false;
-  options.threads = 1;
+  RunOptions options = quietRun({});  // each run below names its folder
   {
     const Scene scene = readScene(io::parseYaml(replaced(bar, "tolerance: 1e-6 ", "tolerance: 1e-16\n  accept_tolerance: 1e-9"), "bar.yaml"));
     options.outputDir = dir.path() / "kept";
@@ -244,10 +232,8 @@ TEST(ImplicitScene, VtuSnapshotsFollowTheOutputIntervalInTheProgressUnit) {
   const Scene scene = readScene(io::parseYaml(replaced(shippedBar(), "until: 0.04 ", "until: 0.002") +
                                                   "output_interval: 0.0005\n", "bar.yaml"));
   ecm::test::TempDir dir;
-  RunOptions options;
-  options.outputDir = dir.path() / "out";
-  options.progress = false;
-  options.plot = false;
+  RunOptions options = quietRun(dir.path() / "out");
+  options.snapshots = true;
   const RunResult r = runScene(scene, options);
   ASSERT_TRUE(r.completed) << r.message();
   for (int k = 0; k < 5; ++k) EXPECT_TRUE(std::filesystem::exists(options.outputDir / ("particles_0000" + std::to_string(k) + ".vtu"))) << k;
@@ -368,21 +354,7 @@ TEST(ImplicitScene, DisplacementControlStopsAtTheStructuralSnapBackAndSaysSo) {
 // pulled 0.01 mm: a uniform strain 1e-3 that uGIMP reproduces exactly, so the top's reaction is
 // E A eps = 1000 x 10 x 1e-3 = 10 N to round-off.
 TEST(ImplicitScene, UGimpWithAFreeMarginOfNodesRunsAndMatchesTheElasticClosedForm) {
-  const std::string text = R"(name: min-ugimp
-grid: {origin: [-10, -10], cell_size: [10, 10], cells: [3, 3]}
-thickness: 1
-particles_per_cell: 2
-materials:
-  - {name: e, model: linear_elastic, hypothesis: plane_stress, youngs_modulus: 1000, poisson_ratio: 0.0, density: 1e-9}
-bodies:
-  - {rectangle: {min: [0, 0], max: [10, 10]}, material: e}
-solver: {scheme: implicit_static, shape_function: ugimp, load_step: 1}
-end_time: 1
-conditions:
-  - {name: base, box: {min: [-1, 0], max: [11, 0]}, fixed: [y]}
-  - {name: corner, box: {min: [-1, -1], max: [0, 0]}, fixed: [x]}
-  - {name: top, box: {min: [-1, 10], max: [11, 10]}, displacement: {y: {type: linear_ramp, value: 0.01, time: 1}}}
-)";
+  const std::string text = pulledBlockYaml("min-ugimp") + "solver: {scheme: implicit_static, shape_function: ugimp, load_step: 1}\n";
   const Scene scene = readScene(io::parseYaml(text, "min-ugimp.yaml"));
   ecm::test::TempDir dir;
   const RunResult r = runScene(scene, quietRun(dir.path() / "out"));

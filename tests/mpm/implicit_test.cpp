@@ -356,12 +356,7 @@ Scene snapBackBar(ShapeFunction shape = ShapeFunction::Linear) {
   s.solver.shapeFunction = shape;
   s.name = "snap-back-bar";
   s.grid = {Vec2(-10.0, -10.0), Vec2(10.0, 10.0), 4, 102};
-  MaterialParams strong = paperConcrete();
-  strong.elastic.poissonRatio = 0.0;
-  MaterialParams weak = strong;
-  weak.name = "weak";
-  weak.tensileStrength = kBarWeakFt;
-  s.materials = {strong, weak};
+  s.materials = concreteWithWeakRow(kBarWeakFt);
   s.bodies = {{Shape::rectangle(Vec2(0.0, 0.0), Vec2(20.0, kBarLength)), 0, false, Vec2::Zero()},
               {Shape::rectangle(Vec2(-1.0, 490.0), Vec2(21.0, 500.0)), 1, false, Vec2::Zero()}};
   s.conditions = {NodeCondition::fixed("base", {Vec2(-1.0, 0.0), Vec2(21.0, 0.0)}, false, true),

@@ -18,21 +18,17 @@
 #include "mpm/run.hpp"
 #include "mpm/scene/scene_yaml.hpp"
 #include "test_scenes.hpp"
+#include "run_helpers.hpp"
 
 namespace ecm::mpm::test {
 namespace {
 
-using ecm::test::readFile;
-using ecm::test::TempDir;
+using namespace ecm::test;  // readFile, TempDir
 namespace fs = std::filesystem;
 
 RunOptions quiet(const fs::path& dir, int threads = 1) {
-  RunOptions o;
-  o.outputDir = dir;
+  RunOptions o = quietRun(dir);
   o.threads = threads;
-  o.plot = false;
-  o.progress = false;
-  o.snapshots = false;
   o.sceneHash = 7;
   return o;
 }

@@ -16,8 +16,7 @@
 namespace ecm::mpm::test {
 namespace {
 
-using ecm::test::expectContains;
-using ecm::test::inputError;
+using namespace ecm::test;  // expectContains, inputError
 
 // A 10 x 20 mm elastic block (E 1000 MPa, nu 0, 1 mm thick) on a base held in y (and one corner in
 // x); its top edge (y = 20) is a platen. Units: mm, N, MPa, t, s.

@@ -12,22 +12,20 @@
 #include "mpm/run.hpp"
 #include "mpm/output/vtu_writer.hpp"
 #include "test_scenes.hpp"
+#include "run_helpers.hpp"
 
 namespace ecm::mpm::test {
 namespace {
 
-using ecm::test::readFile;
-using ecm::test::TempDir;
+using namespace ecm::test;  // readFile, TempDir
 
 TEST(Run, WritesHistorySummarySnapshots) {
   TempDir tmp;
   Scene s = tensionBlock();
   s.endTime = 1e-4;
   s.outputInterval = 2e-5;
-  RunOptions o;
-  o.outputDir = tmp.path() / "out";
-  o.plot = false;
-  o.progress = false;
+  RunOptions o = quietRun(tmp.path() / "out");
+  o.snapshots = true;
   const RunResult r = runScene(s, o);
   ASSERT_TRUE(r.completed) << r.message();
   const io::CsvTable h = io::readCsv(o.outputDir / "history.csv");
@@ -97,10 +95,8 @@ TEST(Run, SnapshotEveryNthOutputRowAndTheLast) {
   s.endTime = 1e-4;
   s.outputInterval = 1e-5;  // 11 rows: 0 .. 10
   s.snapshotEvery = 4;      // rows 0, 4, 8 and the last, 10
-  RunOptions o;
-  o.outputDir = tmp.path() / "out";
-  o.plot = false;
-  o.progress = false;
+  RunOptions o = quietRun(tmp.path() / "out");
+  o.snapshots = true;
   const RunResult r = runScene(s, o);
   ASSERT_TRUE(r.completed) << r.message();
   const io::CsvTable h = io::readCsv(o.outputDir / "history.csv");
@@ -123,11 +119,7 @@ TEST(Run, ParticleSnapshotsAtTheRequestedTimes) {
   Scene s = tensionBlock();
   s.endTime = 1e-4;
   s.particleSnapshots = {3e-5, 1e-4};
-  RunOptions o;
-  o.outputDir = tmp.path() / "out";
-  o.plot = false;
-  o.progress = false;
-  o.snapshots = false;
+  RunOptions o = quietRun(tmp.path() / "out");
   const RunResult r = runScene(s, o);
   ASSERT_TRUE(r.completed) << r.message();
   const io::CsvTable a = io::readCsv(o.outputDir / "particles_t3e-05.csv");
@@ -147,10 +139,8 @@ TEST(Run, FailureKeepsOutputsReadableAndExplainsInSummary) {
   s.endTime = 1e-3;
   s.outputInterval = 1e-5;
   s.snapshotEvery = 1000;  // only row 0 on schedule: the failure's own snapshot must still be written
-  RunOptions o;
-  o.outputDir = tmp.path() / "out";
-  o.progress = false;
-  o.plot = false;
+  RunOptions o = quietRun(tmp.path() / "out");
+  o.snapshots = true;
   const RunResult r = runScene(s, o);
   EXPECT_FALSE(r.completed);
   ASSERT_TRUE(r.failure);

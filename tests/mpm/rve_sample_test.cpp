@@ -15,8 +15,7 @@
 namespace ecm::mpm::test {
 namespace {
 
-using ecm::test::expectContains;
-using ecm::test::inputError;
+using namespace ecm::test;  // expectContains, inputError
 
 RveParams shippedParams() {  // those of data/rve/rve-coarse.yaml
   RveParams p;

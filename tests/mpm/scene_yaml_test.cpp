@@ -10,9 +10,7 @@
 namespace ecm::mpm::test {
 namespace {
 
-using ecm::test::expectContains;
-using ecm::test::inputError;
-using ecm::test::TempDir;
+using namespace ecm::test;  // expectContains, inputError, TempDir
 
 const std::string kScene = R"(name: t
 grid: {origin: [0, 0], cell_size: [10, 10], cells: [10, 12]}

@@ -9,20 +9,18 @@
 #include "io/csv_reader.hpp"
 #include "mpm/run.hpp"
 #include "test_scenes.hpp"
+#include "run_helpers.hpp"
 
 namespace ecm::mpm::test {
 namespace {
 
-using ecm::test::readFile;
-using ecm::test::TempDir;
+using namespace ecm::test;  // readFile, TempDir
 
 TEST(SecondBandRun, OpensSecondBandsAndWritesThem) {
   TempDir tmp;
   const Scene s = twoBandBlock();
-  RunOptions o;
-  o.outputDir = tmp.path() / "out";
-  o.plot = false;
-  o.progress = false;
+  RunOptions o = quietRun(tmp.path() / "out");
+  o.snapshots = true;
   o.threads = 2;
   const RunResult r = runScene(s, o);
   ASSERT_TRUE(r.completed) << r.message();

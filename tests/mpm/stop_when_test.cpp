@@ -10,13 +10,13 @@
 #include "io/csv_reader.hpp"
 #include "mpm/run.hpp"
 #include "test_scenes.hpp"
+#include "run_helpers.hpp"
 
 namespace ecm::mpm::test {
 namespace {
 
 namespace fs = std::filesystem;
-using ecm::test::readFile;
-using ecm::test::TempDir;
+using namespace ecm::test;  // readFile, TempDir
 
 TEST(StopWatch, FiresBelowTheFractionOfThePeakOnlyFromAfterTime) {
   const StopWhen when{"top", 0.1, 1.0, {}, 0.0};
@@ -41,20 +41,10 @@ Scene softeningBlock() {
   return s;
 }
 
-RunOptions options(const fs::path& dir) {
-  RunOptions o;
-  o.outputDir = dir;
-  o.threads = 1;
-  o.plot = false;
-  o.progress = false;
-  o.snapshots = false;
-  return o;
-}
-
 TEST(StopWhen, EndsTheRunAtTheFirstRowBelowTheFractionOfThePeak) {
   TempDir tmp;
   const Scene s = softeningBlock();
-  const RunResult r = runScene(s, options(tmp.path()));
+  const RunResult r = runScene(s, quietRun(tmp.path()));
   ASSERT_TRUE(r.completed) << r.message();
   EXPECT_TRUE(r.endedByStopWhen);
   const io::CsvTable h = io::readCsv(tmp.path() / "history.csv");
@@ -86,12 +76,12 @@ TEST(StopWhen, EndsTheRunAtTheFirstRowBelowTheFractionOfThePeak) {
 TEST(StopWhen, ARestartedRunStopsAtTheSameRow) {
   TempDir tmp;
   const Scene s = softeningBlock();
-  const RunResult whole = runScene(s, options(tmp.path() / "whole"));
+  const RunResult whole = runScene(s, quietRun(tmp.path() / "whole"));
   ASSERT_TRUE(whole.endedByStopWhen) << whole.message();
-  RunOptions first = options(tmp.path() / "split");
+  RunOptions first = quietRun(tmp.path() / "split");
   first.maxSteps = whole.steps - 20;  // past the peak, a few rows before the stop
   ASSERT_TRUE(runScene(s, first).stopped);
-  RunOptions second = options(tmp.path() / "split");
+  RunOptions second = quietRun(tmp.path() / "split");
   second.restart = true;
   const RunResult resumed = runScene(s, second);
   ASSERT_TRUE(resumed.endedByStopWhen) << resumed.message();

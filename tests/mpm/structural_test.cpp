@@ -11,12 +11,12 @@
 #include "mpm/run.hpp"
 #include "mpm/scene/scene_yaml.hpp"
 #include "beam_check.hpp"
+#include "run_helpers.hpp"
 
 namespace ecm::mpm::test {
 namespace {
 
-using ecm::test::readFile;
-using ecm::test::TempDir;
+using namespace ecm::test;  // readFile, TempDir
 
 std::filesystem::path scenePath(const char* name) { return std::filesystem::path(ECM_SOURCE_DIR) / "data" / "mpm" / name; }
 
@@ -25,10 +25,7 @@ std::filesystem::path scenePath(const char* name) { return std::filesystem::path
 TEST(Structural, ElasticBarSceneReactionIsTheSquareWaveOfTheClosedForm) {
   TempDir tmp;
   const Scene s = loadSceneFile(scenePath("elastic-bar.yaml"));
-  RunOptions o;
-  o.outputDir = tmp.path();
-  o.progress = false;
-  ASSERT_TRUE(runScene(s, o).completed);
+  ASSERT_TRUE(runScene(s, quietRun(tmp.path())).completed);
   const io::CsvTable h = io::readCsv(tmp.path() / "history.csv");
   const double c = std::sqrt(32000.0 / 2.4e-9), v0 = 100.0, area = 1.5625 * 1.0, length = 100.0;
   const double amplitude = 2.4e-9 * c * v0 * area, period = 4.0 * length / c;
@@ -57,9 +54,8 @@ TEST(Structural, ElasticBarSceneReactionIsTheSquareWaveOfTheClosedForm) {
 TEST(Structural, TensionBlockSceneCracksAtTheLigament) {
   TempDir tmp;
   const Scene s = loadSceneFile(scenePath("tension-block.yaml"));
-  RunOptions o;
-  o.outputDir = tmp.path();
-  o.progress = false;
+  RunOptions o = quietRun(tmp.path());
+  o.snapshots = true;
   const RunResult r = runScene(s, o);
   ASSERT_TRUE(r.completed) << r.message();
   EXPECT_GT(r.peakLoad, 0.8 * 9000.0);
@@ -80,12 +76,8 @@ TEST(Structural, TensionBlockSceneCracksAtTheLigament) {
 // plots or progress.
 RunResult runDenScene(const std::string& name, const std::filesystem::path& out) {
   const Scene s = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data" / "den" / (name + ".yaml"));
-  RunOptions o;
-  o.outputDir = out;
+  RunOptions o = quietRun(out);
   o.threads = 2;
-  o.snapshots = false;
-  o.plot = false;
-  o.progress = false;
   return runScene(s, o);
 }
 

@@ -2,6 +2,8 @@
 // Small scenes shared by the MPM tests (units: mm, N, MPa, t, s).
 #include <cmath>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "../paper_constants.hpp"
 #include "mpm/explicit/explicit_solver.hpp"
@@ -10,25 +12,16 @@ namespace ecm::mpm::test {
 
 inline MaterialParams elasticMaterial(double e = 32000.0, double nu = 0.0, double density = 2.4e-9,
                                       Hypothesis h = Hypothesis::PlaneStress) {
-  MaterialParams m;
-  m.name = "elastic";
-  m.model = ModelKind::LinearElastic;
-  m.elastic = {e, nu, h};
-  m.density = density;
+  MaterialParams m{.name = "elastic", .model = ModelKind::LinearElastic, .elastic = {e, nu, h}, .density = density};
   return m;
 }
 
 // The paper's DEN concrete (tests/paper_constants.hpp) with a density.
 inline MaterialParams paperConcrete() {
-  MaterialParams m;
-  m.name = "den-concrete";
-  m.model = ModelKind::Enriched;
-  m.elastic = {ecm::test::kE, ecm::test::kNu, Hypothesis::PlaneStress};
-  m.density = 2.4e-9;
-  m.tensileStrength = ecm::test::kFt;
-  m.softeningModulus = ecm::test::kEp;
-  m.softeningExponent = ecm::test::kN;
-  m.bandWidth = ecm::test::kBandWidth;
+  MaterialParams m{.name = "den-concrete", .model = ModelKind::Enriched,
+                   .elastic = {ecm::test::kE, ecm::test::kNu, Hypothesis::PlaneStress}, .density = 2.4e-9,
+                   .tensileStrength = ecm::test::kFt, .softeningModulus = ecm::test::kEp,
+                   .softeningExponent = ecm::test::kN, .bandWidth = ecm::test::kBandWidth};
   return m;
 }
 
@@ -76,6 +69,37 @@ namespace ecm::mpm::test {
 
 // A 100 x 100 mm block on a fixed base, pulled at its top row of particles by a total force
 // (smooth ramp, then held), with local damping: a quasi-static elastic run.
+// A 10 x 10 mm elastic block (E 1000 MPa, nu 0, 1 mm thick; 2 x 2 particles per 10 mm cell, at 2.5
+// and 7.5 mm) on a base held in y, its top pulled 0.01 mm in 1 s: a uniform strain of 1e-3 and a
+// top reaction of 10 N. A scene's YAML, to append a solver or gauges to. Units: mm, N, MPa, t, s.
+inline std::string pulledBlockYaml(const std::string& name) {
+  return "name: " + name + R"(
+grid: {origin: [-10, -10], cell_size: [10, 10], cells: [3, 3]}
+thickness: 1
+particles_per_cell: 2
+materials:
+  - {name: e, model: linear_elastic, hypothesis: plane_stress, youngs_modulus: 1000, poisson_ratio: 0.0, density: 1e-9}
+bodies:
+  - {rectangle: {min: [0, 0], max: [10, 10]}, material: e}
+end_time: 1
+conditions:
+  - {name: base, box: {min: [-1, 0], max: [11, 0]}, fixed: [y]}
+  - {name: corner, box: {min: [-1, -1], max: [0, 0]}, fixed: [x]}
+  - {name: top, box: {min: [-1, 10], max: [11, 10]}, displacement: {y: {type: linear_ramp, value: 0.01, time: 1}}}
+)";
+}
+
+// The paper's concrete with nu = 0 (a one-dimensional bar or block) and a copy named "weak"
+// with the tensile strength weakFt (MPa), where the crack is to open: materials 0 and 1.
+inline std::vector<MaterialParams> concreteWithWeakRow(double weakFt) {
+  MaterialParams strong = paperConcrete();
+  strong.elastic.poissonRatio = 0.0;
+  MaterialParams weak = strong;
+  weak.name = "weak";
+  weak.tensileStrength = weakFt;
+  return {strong, weak};
+}
+
 inline Scene tensionBlock(double force = 1000.0, int cells = 10) {
   const double h = 100.0 / cells;
   Scene s;

@@ -12,11 +12,7 @@ namespace ecm::study::test {
 namespace {
 
 namespace fs = std::filesystem;
-using ecm::test::expectContains;
-using ecm::test::runTool;
-using ecm::test::shellQuoted;
-using ecm::test::TempDir;
-using ecm::test::ToolRun;
+using namespace ecm::test;  // expectContains, runTool, shellQuoted, TempDir, ToolRun
 
 ToolRun study(const std::string& args, const TempDir& tmp) { return runTool(ECM_STUDY, args, tmp.path()); }
 
@@ -28,23 +24,6 @@ std::string pointStudy(const std::string& extra = "") {
          "knobs:\n"
          "  path.increments: [20, 200]\n"
          "reference: {closed_form: uniaxial_tension}\n" + extra;
-}
-
-TEST(EcmStudy, AMissingStudyFileIsBadInput) {
-  TempDir tmp;
-  const ToolRun r = study(shellQuoted(tmp.path() / "no-such-study.yaml"), tmp);
-  EXPECT_EQ(r.status, ecm::io::kExitBadInput) << r.err;  // CLI11 alone would exit 105
-  expectContains(r.err, "no-such-study.yaml");           // CLI11's message
-}
-
-TEST(EcmStudy, ABadCommandLineIsBadInputAndHelpIsDone) {
-  TempDir tmp;
-  EXPECT_EQ(study("", tmp).status, ecm::io::kExitBadInput);  // no study file
-  const fs::path file = tmp.write("study.yaml", pointStudy());
-  EXPECT_EQ(study(shellQuoted(file) + " --no-such-option", tmp).status, ecm::io::kExitBadInput);
-  const ToolRun help = study("--help", tmp);
-  EXPECT_EQ(help.status, ecm::io::kExitDone);
-  expectContains(help.out, "--resume");
 }
 
 TEST(EcmStudy, AnUnknownKeyIsBadInputWithTheLine) {
@@ -82,15 +61,6 @@ TEST(EcmStudy, FailedRunsExitOneWithTheTable) {
   EXPECT_EQ(r.status, ecm::io::kExitRunFailed) << r.err;
   expectContains(r.out, "failed");
   EXPECT_TRUE(fs::exists(tmp.path() / "out" / "study.csv"));
-}
-
-TEST(EcmStudy, AnOutputFolderThatCannotBeUsedIsBadInput) {
-  TempDir tmp;
-  const fs::path file = tmp.write("study.yaml", pointStudy());
-  const fs::path notAFolder = tmp.write("a-file", "not a folder\n");
-  const ToolRun r = study(shellQuoted(file) + " -q --out " + shellQuoted(notAFolder), tmp);
-  EXPECT_EQ(r.status, ecm::io::kExitBadInput);
-  expectContains(r.err, "a-file");
 }
 
 }  // namespace

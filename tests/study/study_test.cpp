@@ -16,10 +16,7 @@
 namespace ecm::study::test {
 namespace {
 
-using ecm::test::expectContains;
-using ecm::test::inputError;
-using ecm::test::readFile;
-using ecm::test::TempDir;
+using namespace ecm::test;  // expectContains, inputError, readFile, TempDir
 
 const std::string kSource = ECM_SOURCE_DIR;
 
