@@ -160,7 +160,8 @@ BENCHMARK(BM_SmearedSoftening);
 // elastic), 1 cracked points softening further. bench/python_update_bench.py times the same
 // from Python.
 void BM_MaterialUpdateMany(benchmark::State& st) {
-  MaterialParams p{.model = ModelKind::Enriched, .elastic = {32000.0, 0.2, Hypothesis::PlaneStress},
+  MaterialParams p{.name = "concrete",
+                   .model = ModelKind::Enriched, .elastic = {32000.0, 0.2, Hypothesis::PlaneStress},
                    .tensileStrength = 3.0, .softeningModulus = 8.184, .softeningExponent = 0.128, .bandWidth = 0.05};
   const Material m(p);
   const bool cracked = st.range(0) != 0;

@@ -49,7 +49,7 @@ void symmetryLine(HalfModel& m, std::vector<bool>& fixed, int normal, double at,
     const double after = k + 1 < ligament.size() ? m.mesh.nodes[ligament[k + 1]][along] - s : 0.0;
     m.interface.push_back({ligament[k], -1, sign, 0.5 * (before + after) * m.bulk.thickness, s});
   }
-  m.ligamentAxis = along == 0 ? "x" : "y";
+  m.ligamentAxis.assign(1, along == 0 ? 'x' : 'y');  // (a char: GCC 12 warns falsely, -Wrestrict, on a const char*)
 }
 
 void finishInterface(HalfModel& m, int normal) {

@@ -22,7 +22,8 @@ inline DamageLawParams concreteShape(double n = kN) { return {kE, kFt, 0.0, n}; 
 
 // The DEN concrete as an enriched material (plane stress), as the scenes declare it.
 inline MaterialParams paperConcreteMaterial() {
-  MaterialParams p{.model = ModelKind::Enriched, .elastic = {kE, kNu, Hypothesis::PlaneStress},
+  MaterialParams p{.name = "paper-concrete",
+                   .model = ModelKind::Enriched, .elastic = {kE, kNu, Hypothesis::PlaneStress},
                    .tensileStrength = kFt, .softeningModulus = kEp, .softeningExponent = kN, .bandWidth = kBandWidth};
   return p;
 }

@@ -164,7 +164,8 @@ TEST(Extremes, HugeJumpIncrementSamplesItsPathWithoutOverflow) {
   // 6e9 kJumpCheck h made the path's sample count overflow an int before it was clamped
   // (undefined behaviour, reported by UBSan under scripts/sanitize.sh). The harness's input
   // decoded: f = h/H = 1 - 1e-6, E 1 MPa with f_t' 1000 MPa, strain increments of 1e7.
-  MaterialParams p{.model = ModelKind::Enriched, .elastic = {1.0, 0.3100784313725491, Hypothesis::PlaneStrain},
+  MaterialParams p{.name = "huge-jump",
+                   .model = ModelKind::Enriched, .elastic = {1.0, 0.3100784313725491, Hypothesis::PlaneStrain},
                    .tensileStrength = 1000.0, .softeningModulus = 1e6, .softeningExponent = 0.499,
                    .bandWidth = 9.585458220833413};
   const Material m(p);

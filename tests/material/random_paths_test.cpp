@@ -59,7 +59,8 @@ struct Counts {
 
 void checkModel(ModelKind kind, Hypothesis hyp, SecondBandOption option, std::uint64_t seed, Counts& counts) {
   PathGenerator gen(seed);
-  MaterialParams p{.model = kind, .elastic = {test::kE, test::kNu, hyp}, .tensileStrength = test::kFt,
+  MaterialParams p{.name = "random-paths",
+                   .model = kind, .elastic = {test::kE, test::kNu, hyp}, .tensileStrength = test::kFt,
                    .softeningModulus = test::kEp, .softeningExponent = test::kN, .bandWidth = test::kBandWidth,
                    .secondBand = option};
   const Material m(p);

@@ -21,7 +21,8 @@ namespace ecm {
 namespace {
 
 MaterialParams concrete(SecondBandOption option, double nu = test::kNu) {
-  MaterialParams p{.model = ModelKind::Enriched, .elastic = {test::kE, nu, Hypothesis::PlaneStress},
+  MaterialParams p{.name = "concrete",
+                   .model = ModelKind::Enriched, .elastic = {test::kE, nu, Hypothesis::PlaneStress},
                    .tensileStrength = test::kFt, .softeningModulus = test::kEp, .softeningExponent = test::kN,
                    .bandWidth = test::kBandWidth, .secondBand = option};
   return p;
@@ -400,7 +401,8 @@ TEST(SecondBand, ASecondBandNextToANearlyFailedFirstBandIsReleasedWithTheFirstUn
 // stress (both planes are free: sigma . n1 = sigma . n2 = 0, which in the plane is sigma = 0) and
 // leave the jumps where they are but for the bulk strain's increment.
 TEST(SecondBand, TwoFailedBandsTakeAnIncrementWithoutDriftingAlongTheirFreeSliding) {
-  MaterialParams params{.model = ModelKind::Enriched, .elastic = {25850.0, 0.18, Hypothesis::PlaneStress},
+  MaterialParams params{.name = "failed-bands",
+                        .model = ModelKind::Enriched, .elastic = {25850.0, 0.18, Hypothesis::PlaneStress},
                         .tensileStrength = 2.7, .softeningModulus = 56.997193986047456,
                         .softeningExponent = 0.28262042959628364, .bandWidth = 0.05,
                         .secondBand = SecondBandOption::Orthogonal};
@@ -444,7 +446,7 @@ TEST(SecondBand, TwoFailedBandsTakeAnIncrementWithoutDriftingAlongTheirFreeSlidi
 // act in series, and the bands are softer than the bulk), and no move along the free sliding
 // (jumps dj1 = s t1, dj2 = s n1 with n2 = -t1 leave f1 N1 dj1 + f2 N2 dj2 = 0 for f1 = f2).
 TEST(SecondBand, ASingularJacobianBeforeTheBandsHaveFailedGivesAFiniteTangent) {
-  MaterialParams params{.model = ModelKind::Enriched,
+  MaterialParams params{.name = "singular-jacobian", .model = ModelKind::Enriched,
                         .elastic = {1.0552279927159722, 0.48999999999999999, Hypothesis::PlaneStress},
                         .tensileStrength = 958.10809901387108, .softeningModulus = 0.0010136901849807907,
                         .softeningExponent = 0.20915161364156559, .bandWidth = 1e-4,

@@ -45,7 +45,8 @@ struct Point {
 };
 
 MaterialParams params(ModelKind kind, Hypothesis hyp = Hypothesis::PlaneStress) {
-  MaterialParams p{.model = kind, .elastic = {test::kE, test::kNu, hyp}, .tensileStrength = test::kFt,
+  MaterialParams p{.name = "tangent",
+                   .model = kind, .elastic = {test::kE, test::kNu, hyp}, .tensileStrength = test::kFt,
                    .softeningModulus = test::kEp, .softeningExponent = test::kN, .bandWidth = test::kBandWidth};
   return p;
 }
