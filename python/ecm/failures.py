@@ -39,24 +39,15 @@ class RunFailed(RuntimeError):
         self.file = failure.get("file")
 
 
-# One class per kind of the table, named after it.
-_CLASS_NAMES = {
-    "left_grid": "LeftGridError",
-    "not_finite": "NotFiniteError",
-    "material_update": "MaterialUpdateError",
-    "snap_back": "SnapBackError",
-    "newton_not_converged": "NewtonNotConvergedError",
-    "singular_tangent": "SingularTangentError",
-    "onset_overshoot": "OnsetOvershootError",
-    "control_blind": "ControlBlindError",
-    "damping_work": "DampingWorkError",
-    "work_imbalance": "WorkImbalanceError",
-    "output": "RunOutputError",
-}
+# One class per kind of the table, named after it: left_grid -> LeftGridError (output ->
+# RunOutputError, beside the module's OutputError for an output folder that cannot be used).
+def _class_name(kind):
+    return "RunOutputError" if kind == "output" else "".join(w.capitalize() for w in kind.split("_")) + "Error"
+
 
 FAILURE_CLASSES = {}
 for _kind, _status, _meaning in _ecm._failure_kinds():
-    _cls = type(_CLASS_NAMES[_kind], (RunFailed,),
+    _cls = type(_class_name(_kind), (RunFailed,),
                 {"kind": _kind, "__doc__": f"A run failed: {_meaning} (failure.kind '{_kind}', ecm-mpm exit status {_status}).",
                  "__module__": "ecm"})
     FAILURE_CLASSES[_kind] = _cls
