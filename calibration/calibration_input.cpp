@@ -57,6 +57,15 @@ CalibrationInput readCalibrationInput(const io::YamlMap& m) {
   }
   if (m.has("out")) in.out = m.get<std::string>("out");
   if (m.has("write_material")) in.writeMaterial = m.get<std::string>("write_material");
+  if (m.has("write_umat")) in.writeUmat = m.get<std::string>("write_umat");
+  if (m.has("element_sizes")) {
+    in.elementSizes = m.scalarSequence<double>("element_sizes");
+    in.origin["element_sizes"] = {m.file(), m.line("element_sizes")};
+  }
+  if (m.has("umat_dialect")) {
+    in.umatDialect = m.getEnum("umat_dialect", {"calculix", "abaqus"});
+    in.origin["umat_dialect"] = {m.file(), m.line("umat_dialect")};
+  }
   if (m.has("name")) in.name = m.get<std::string>("name");
   if (m.has("hypothesis")) {
     in.hypothesis = m.getEnum("hypothesis", {"plane_stress", "plane_strain"});
@@ -82,6 +91,9 @@ void overlay(CalibrationInput& base, const CalibrationInput& top) {
   take(base.fitPoints, top.fitPoints, "fit_points");
   take(base.out, top.out, "out");
   take(base.writeMaterial, top.writeMaterial, "write_material");
+  take(base.writeUmat, top.writeUmat, "write_umat");
+  take(base.elementSizes, top.elementSizes, "element_sizes");
+  take(base.umatDialect, top.umatDialect, "umat_dialect");
   take(base.name, top.name, "name");
   take(base.hypothesis, top.hypothesis, "hypothesis");
 }
@@ -138,6 +150,30 @@ class Checker {
  private:
   const CalibrationInput& in_;
 };
+
+// The UMAT card's element sizes and dialect: sizes above the band width, and given for CalculiX
+// (which passes no CELENT); Abaqus without sizes gets H = 0 (its CELENT per element).
+void planUmatCard(const Checker& c, const CalibrationInput& in, CalibrationPlan& p) {
+  if (p.mode == CalibrationMode::CrackBand)
+    c.fail("write_umat", "--write-umat writes ecm's enriched point: the crack band (--smeared-H) has no UMAT card");
+  if (in.umatDialect && *in.umatDialect == "abaqus") p.dialect = umat::Dialect::Abaqus;
+  else if (in.umatDialect && *in.umatDialect != "calculix")
+    c.fail("umat_dialect", "umat_dialect '" + *in.umatDialect + "' is not one of: calculix, abaqus");
+  if (in.elementSizes) p.elementSizes = *in.elementSizes;
+  if (p.elementSizes.empty()) {
+    if (p.dialect == umat::Dialect::CalculiX)
+      c.fail("element_sizes", "--write-umat for CalculiX needs the element sizes H (mm): --element-size 2.5[,5,...] "
+                              "(CalculiX passes no CELENT; --umat-dialect abaqus takes H from CELENT)");
+    p.elementSizes = {0.0};
+    return;
+  }
+  for (const double size : p.elementSizes) {
+    if (!(size > 0.0) || !std::isfinite(size))
+      c.fail("element_sizes", "element size H = " + numberText(size, 10) + " mm: must be a positive number");
+    if (const std::string why = effectiveSizeProblem(size, p.width); !why.empty())
+      c.fail("element_sizes", "element size H = " + numberText(size, 10) + " mm: " + why);
+  }
+}
 
 }  // namespace
 
@@ -217,9 +253,12 @@ CalibrationPlan planCalibration(const CalibrationInput& in) {
       c.fail("hypothesis", "hypothesis '" + *in.hypothesis + "' is not one of: plane_stress, plane_strain");
     }
   }
-  if (p.writeMaterial) {
-    p.poissonRatio = c.value("poisson_ratio", "for --write-material");
-    if (c.given("density")) p.density = c.value("density", "for --write-material");
+  p.writeUmat = in.writeUmat;
+  if (p.writeUmat) planUmatCard(c, in, p);
+  if (p.writeMaterial || p.writeUmat) {
+    const std::string purpose = p.writeMaterial ? "for --write-material" : "for --write-umat";
+    p.poissonRatio = c.value("poisson_ratio", purpose);
+    if (c.given("density")) p.density = c.value("density", purpose);
   } else {
     if (c.given("poisson_ratio")) p.poissonRatio = c.value("poisson_ratio", "");
     if (c.given("density")) p.density = c.value("density", "");

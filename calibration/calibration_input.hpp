@@ -29,6 +29,7 @@
 #include "io/yaml_input.hpp"
 #include "material/damage_function.hpp"
 #include "material/linear_elastic.hpp"
+#include "umat/umat_props.hpp"
 
 namespace ecm::calibration {
 
@@ -39,7 +40,9 @@ struct CalibrationInput {
   std::optional<double> youngsModulus, poissonRatio, tensileStrength, fractureEnergy, bandWidth, softeningExponent,
       softeningModulus, smearedSize, density;
   std::optional<std::string> fit;  // "hordijk"
-  std::optional<std::filesystem::path> fitCsv, out, writeMaterial;
+  std::optional<std::filesystem::path> fitCsv, out, writeMaterial, writeUmat;
+  std::optional<std::vector<double>> elementSizes;  // H (mm) per element size, for the UMAT card
+  std::optional<std::string> umatDialect;           // "calculix" | "abaqus"
   std::optional<TargetCurve> fitPoints;  // measured points given in code (the Python module), as fit_csv
   std::optional<std::string> name, hypothesis;
   // Where values read from a YAML file came from: key -> (file, line), for messages.
@@ -73,7 +76,11 @@ struct CalibrationPlan {
   std::optional<TargetCurve> target;
   std::filesystem::path out = "out/calibrate";
   std::optional<std::filesystem::path> writeMaterial;
-  // For the written material.
+  // The UMAT card (umat/umat_props.hpp): one *MATERIAL per element size H.
+  std::optional<std::filesystem::path> writeUmat;
+  std::vector<double> elementSizes;
+  umat::Dialect dialect = umat::Dialect::CalculiX;
+  // For the written material and card.
   std::string name = "calibrated";
   Hypothesis hypothesis = Hypothesis::PlaneStress;
   double poissonRatio = 0.0;

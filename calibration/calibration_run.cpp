@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <sstream>
 
 #include "calibration/fracture_energy.hpp"
 #include "io/csv_writer.hpp"
 #include "io/gnuplot.hpp"
 #include "io/json_summary.hpp"
+#include "io/material_yaml.hpp"
+#include "io/output_error.hpp"
 #include "material/smeared_crack.hpp"
 
 namespace ecm::calibration {
@@ -168,6 +171,27 @@ MaterialParams calibratedMaterial(const CalibrationResult& r, const CalibrationP
     m.bandWidth = r.width;
   }
   return m;
+}
+
+void writeRequestedFiles(const CalibrationResult& r, const CalibrationPlan& plan, std::ostream& log) {
+  if (plan.writeMaterial) {
+    io::writeMaterialFile(calibratedMaterial(r, plan), *plan.writeMaterial);
+    log << "  material written to " << plan.writeMaterial->string() << "\n";
+  }
+  if (plan.writeUmat) {
+    umat::CardRequest card;
+    card.name = plan.name;
+    card.effectiveSizes = plan.elementSizes;
+    card.dialect = plan.dialect;
+    card.source = "calibrated by ecm-calibrate (" + std::string(toString(r.mode)) + ")";
+    const std::string text = umat::materialCard(calibratedMaterial(r, plan), card);
+    std::ofstream out(*plan.writeUmat);
+    out << text;
+    out.close();
+    if (!out) throw io::OutputError(*plan.writeUmat, "the UMAT card could not be written");
+    log << "  UMAT card written to " << plan.writeUmat->string() << " (" << plan.elementSizes.size()
+        << (plan.elementSizes.size() == 1 ? " material" : " materials, one per element size") << ")\n";
+  }
 }
 
 }  // namespace ecm::calibration

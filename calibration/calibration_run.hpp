@@ -42,5 +42,9 @@ bool writeOutputs(const CalibrationResult& r, const std::filesystem::path& dir);
 // The calibrated law as a material: enriched (band width h) or, for the crack band,
 // smeared_crack with the regularised E_p and G_F.
 MaterialParams calibratedMaterial(const CalibrationResult& r, const CalibrationPlan& plan);
+// The files the plan asks for beyond the outputs: the material YAML (--write-material) and ecm's
+// UMAT card (--write-umat, one *MATERIAL per element size); one line per file written on `log`.
+// Throws io::OutputError naming a file that cannot be written.
+void writeRequestedFiles(const CalibrationResult& r, const CalibrationPlan& plan, std::ostream& log);
 
 }  // namespace ecm::calibration

@@ -39,10 +39,7 @@ int run(const CalibrationInput& cli, const std::optional<std::filesystem::path>&
   writeOutputs(result, plan.out);
   std::cout << "  outputs in " << plan.out.string() << ": summary.json, softening.csv"
             << (result.target ? ", target.csv" : "") << ", softening.png\n";
-  if (plan.writeMaterial) {
-    io::writeMaterialFile(calibratedMaterial(result, plan), *plan.writeMaterial);
-    std::cout << "  material written to " << plan.writeMaterial->string() << "\n";
-  }
+  writeRequestedFiles(result, plan, std::cout);
   return io::kExitDone;
 }
 
@@ -55,6 +52,7 @@ int main(int argc, char** argv) {
       "  fit n, E_p:  --E 32000 --ft 3.0 --GF 0.11 --h 0.05 --fit hordijk   (or --fit-csv FILE)\n"
       "  forward:     --E 32000 --ft 3.0 --h 0.05 --Ep 8.184 --n 0.128\n"
       "  crack band:  --E 32000 --ft 3.0 --GF 0.11 --n 0.128 --smeared-H 100\n"
+      "  UMAT card:   ... --nu 0.2 --write-umat concrete.inp --element-size 2.5   (CalculiX; --umat-dialect abaqus)\n"
       "Exit status: 0 done, 1 no result (no crack-band E_p: H >= H_crit) or an output not written, 2 bad input."};
   app.set_help_flag("--help", "Print this help and exit");
 
@@ -62,12 +60,18 @@ int main(int argc, char** argv) {
   for (const Quantity& q : quantities())
     app.add_option(q.flag, values[q.key], std::string(q.key) + ": " + q.symbol + " (" + q.unit + ")");
   std::optional<std::filesystem::path> inputFile;
-  std::string fit, fitCsv, out, writeMaterial, name, hypothesis;
+  std::string fit, fitCsv, out, writeMaterial, writeUmat, name, hypothesis, dialect;
+  std::vector<double> elementSizes;
   app.add_option("--input", inputFile, "YAML input with the same quantities as keys (command line overrides it)");
   app.add_option("--fit", fit, "fit n and E_p to a target curve: hordijk");
   app.add_option("--fit-csv", fitCsv, "fit n and E_p to measured points: CSV of w (mm), sigma (MPa)");
   app.add_option("--out", out, "output folder (default out/calibrate)");
   app.add_option("--write-material", writeMaterial, "write the calibrated material YAML to this file (needs --nu)");
+  app.add_option("--write-umat", writeUmat,
+                 "write ecm's UMAT card (*MATERIAL, *USER MATERIAL, *DEPVAR) for the calibrated law to this file (needs --nu)");
+  app.add_option("--element-size", elementSizes, "H (mm) of the elements the card is for, one *MATERIAL each (2.5,5)")
+      ->delimiter(',');
+  app.add_option("--umat-dialect", dialect, "calculix (default; needs --element-size) | abaqus (no size: H from CELENT)");
   app.add_option("--name", name, "name of the written material (default calibrated)");
   app.add_option("--hypothesis", hypothesis, "plane_stress (default) | plane_strain, for the written material");
 
@@ -86,6 +90,9 @@ int main(int argc, char** argv) {
   if (app.count("--fit-csv") > 0) cli.fitCsv = fitCsv;
   if (app.count("--out") > 0) cli.out = out;
   if (app.count("--write-material") > 0) cli.writeMaterial = writeMaterial;
+  if (app.count("--write-umat") > 0) cli.writeUmat = writeUmat;
+  if (app.count("--element-size") > 0) cli.elementSizes = elementSizes;
+  if (app.count("--umat-dialect") > 0) cli.umatDialect = dialect;
   if (app.count("--name") > 0) cli.name = name;
   if (app.count("--hypothesis") > 0) cli.hypothesis = hypothesis;
 

@@ -63,6 +63,8 @@ struct PointRun3 {
 // Whether a point scene file asks for the 3D point (its own or its material's hypothesis).
 bool isThreeDimensionalScene(const io::YamlMap& map);
 PointScene3 readPointScene3(const io::YamlMap& map);
+// A scene's `path` (segments or a preset), shared with the UMAT scene (driver/umat_driver.hpp).
+std::vector<Segment3> readPath3(const io::YamlMap& path);
 PointScene3 loadPointScene3(const std::filesystem::path& file);
 
 // Presets (strains are totals): uniaxial_tension (sig = 0 but sig_xx), triaxial (eps_xx to

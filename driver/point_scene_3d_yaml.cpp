@@ -24,6 +24,8 @@ Segment3 readSegment3(const YamlMap& m) {
   return s;
 }
 
+}  // namespace
+
 std::vector<Segment3> readPath3(const YamlMap& path) {
   if (path.has("segments")) {
     std::vector<Segment3> segments;
@@ -43,8 +45,6 @@ std::vector<Segment3> readPath3(const YamlMap& path) {
   }
   return presetSegments3(name, strain, increments, confinement, direction);
 }
-
-}  // namespace
 
 bool isThreeDimensionalScene(const YamlMap& map) {
   if (map.has("hypothesis")) return map.getEnum("hypothesis", {"plane_stress", "plane_strain", "three_dimensional"}) == "three_dimensional";

@@ -92,7 +92,10 @@ def calibrate(file=None, out=None, **keys):
     """ecm-calibrate: the keys of a calibration input file as keywords (youngs_modulus,
     tensile_strength, fracture_energy, band_width, softening_exponent, softening_modulus,
     smeared_element_size, fit="hordijk", fit_csv=...), and/or the file itself (keywords win).
-    Returns the summary (summary.json's content); with `out`, writes the tool's files there."""
+    Returns the summary (summary.json's content); with `out`, writes the tool's files there.
+    write_material="m.yaml" and write_umat="card.inp" (with element_sizes=[2.5, ...] in mm and
+    umat_dialect="calculix" or "abaqus") write the calibrated material and ecm's UMAT card as
+    ecm-calibrate --write-material and --write-umat do (both need poisson_ratio)."""
     return _ecm._calibrate(None if file is None else os.fspath(file), keys, None, None,
                            None if out is None else os.fspath(out))
 

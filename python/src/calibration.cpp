@@ -4,6 +4,8 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <sstream>
+
 #include "calibration/calibration_input.hpp"
 #include "calibration/calibration_run.hpp"
 #include "calibration/fracture_energy.hpp"
@@ -41,6 +43,8 @@ void bindCalibration(py::module_& m) {
           result = calibration::runCalibration(plan);
         }
         if (out) calibration::writeOutputs(result, *out);  // (false: only the plot could not be made)
+        std::ostringstream written;  // write_material, write_umat: the files, as the tool writes them
+        calibration::writeRequestedFiles(result, plan, written);
         return toPython(calibration::summaryJson(result));
       },
       py::arg("file") = py::none(), py::arg("keys") = py::dict(), py::arg("w") = py::none(),

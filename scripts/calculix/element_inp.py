@@ -8,6 +8,7 @@ engineering), so each of the eight integration points follows the same strain pa
     python3 scripts/calculix/element_inp.py OUT.inp --props 1,32000,0.2,3,8.184,0.128,0.05,10,1 \
         --size 10 --step 200:eps_xx=2e-4 --step 200:eps_xx=2e-4,gamma_xy=1e-3
     python3 scripts/calculix/element_inp.py OUT.inp --props ... --direction 1,2,2 --step 400:e=2e-3
+    python3 scripts/calculix/element_inp.py OUT.inp --card concrete.inp --size 2.5 --step 200:eps_xx=2e-4
 
 A step is INCREMENTS:COMPONENT=VALUE,... with the components eps_xx, eps_yy, eps_zz, gamma_yz,
 gamma_xz, gamma_xy (absent ones are 0 at the step's end), or with --direction d, `e` for the
@@ -16,6 +17,7 @@ end in equal, fixed increments (*STATIC, DIRECT). PROPS and STATEV: docs/fe-code
 """
 import argparse
 import math
+import pathlib
 import sys
 
 COMPONENTS = ("eps_xx", "eps_yy", "eps_zz", "gamma_yz", "gamma_xz", "gamma_xy")
@@ -71,16 +73,34 @@ def parse_step(text, direction):
     return increments, [given.get(c, 0.0) for c in COMPONENTS]
 
 
-def element_input(props, size, steps, material="ABAQUS_ECM"):
-    """The text of the .inp: props (9 or 10 numbers), the cube's edge (mm), steps [(increments, voigt)]."""
+def card_material(card):
+    """The name of the first *MATERIAL in a card file (as ecm-calibrate --write-umat writes it)."""
+    for line in pathlib.Path(card).read_text().splitlines():
+        if line.upper().startswith("*MATERIAL"):
+            for item in line.split(",")[1:]:
+                key, _, value = item.partition("=")
+                if key.strip().upper() == "NAME":
+                    return value.strip()
+    raise SystemExit(f"element_inp: {card} holds no *MATERIAL, NAME=...")
+
+
+def element_input(props, size, steps, material="ABAQUS_ECM", card=None):
+    """The text of the .inp: props (9 or 10 numbers), the cube's edge (mm), steps [(increments, voigt)].
+    With `card` (a file with the *MATERIAL block, e.g. from ecm-calibrate --write-umat) the deck
+    includes it and the element takes its first material; props are then not used."""
     nodes = cube_nodes(size)
     lines = ["** One C3D8 element of ecm's UMAT under a homogeneous strain path. Units: mm, N, MPa.",
              "*NODE, NSET=NALL"]
     lines += [f"{i + 1}, {field(x)}, {field(y)}, {field(z)}" for i, (x, y, z) in enumerate(nodes)]
-    lines += ["*ELEMENT, TYPE=C3D8, ELSET=EALL", "1, 1, 2, 3, 4, 5, 6, 7, 8",
-              f"*MATERIAL, NAME={material}", f"*USER MATERIAL, CONSTANTS={len(props)}"]
-    lines += [", ".join(field(p) for p in props[i:i + 8]) for i in range(0, len(props), 8)]
-    lines += ["*DEPVAR", str(STATE_VARIABLES), f"*SOLID SECTION, ELSET=EALL, MATERIAL={material}"]
+    lines += ["*ELEMENT, TYPE=C3D8, ELSET=EALL", "1, 1, 2, 3, 4, 5, 6, 7, 8"]
+    if card is not None:
+        material = card_material(card)
+        lines += [f"*INCLUDE, INPUT={card}"]
+    else:
+        lines += [f"*MATERIAL, NAME={material}", f"*USER MATERIAL, CONSTANTS={len(props)}"]
+        lines += [", ".join(field(p) for p in props[i:i + 8]) for i in range(0, len(props), 8)]
+        lines += ["*DEPVAR", str(STATE_VARIABLES)]
+    lines += [f"*SOLID SECTION, ELSET=EALL, MATERIAL={material}"]
     for increments, voigt in steps:
         eps = strain_tensor(voigt)
         lines += [f"*STEP, INC={increments + 10}", "*STATIC, DIRECT", f"{field(1.0 / increments)}, 1.", "*BOUNDARY"]
@@ -95,13 +115,15 @@ def element_input(props, size, steps, material="ABAQUS_ECM"):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("out", help="the .inp file to write")
-    parser.add_argument("--props", required=True, help="PROPS, comma-separated (docs/fe-codes.md)")
+    source = parser.add_mutually_exclusive_group(required=True)
+    source.add_argument("--props", help="PROPS, comma-separated (docs/fe-codes.md)")
+    source.add_argument("--card", help="a material card file to include (ecm-calibrate --write-umat)")
     parser.add_argument("--size", type=float, default=10.0, help="the cube's edge (mm)")
     parser.add_argument("--direction", help="d for uniaxial strain e d (x) d, comma-separated")
     parser.add_argument("--step", action="append", required=True, help="INCREMENTS:COMPONENT=VALUE,...")
     args = parser.parse_args(argv)
-    props = [float(p) for p in args.props.split(",")]
-    if len(props) not in (9, 10):
+    props = [float(p) for p in args.props.split(",")] if args.props else []
+    if args.props and len(props) not in (9, 10):
         raise SystemExit(f"element_inp: --props has {len(props)} numbers; the UMAT takes 9 or 10")
     direction = None
     if args.direction:
@@ -114,7 +136,7 @@ def main(argv=None):
         raise SystemExit("element_inp: --size must be positive (mm)")
     steps = [parse_step(s, direction) for s in args.step]
     with open(args.out, "w") as f:
-        f.write(element_input(props, args.size, steps))
+        f.write(element_input(props, args.size, steps, card=args.card))
     return 0
 
 

@@ -23,6 +23,7 @@ import ecm
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 import ccx_dat  # noqa: E402
+import deck_check  # noqa: E402
 import ccx_frd  # noqa: E402
 import lpanel_inp  # noqa: E402
 
@@ -33,6 +34,7 @@ def run_ccx(scene, ccx, to, folder, increment=0.01, element="C3D8"):
     folder.mkdir(parents=True, exist_ok=True)
     args = [str(scene), str(folder / "lpanel.inp"), "--to", repr(to), "--increment", repr(increment), "--element", element]
     lpanel_inp.main(args)
+    deck_check.check(folder / "lpanel.inp", ecm=True)  # before ccx reads it (docs/fe-codes.md, "Material cards")
     with open(folder / "ccx.log", "w") as log:
         status = subprocess.run([ccx, "-i", "lpanel"], cwd=folder, stdout=log, stderr=subprocess.STDOUT,
                                 env=dict(os.environ, OMP_NUM_THREADS="1")).returncode

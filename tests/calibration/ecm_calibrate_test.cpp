@@ -7,6 +7,8 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "io/csv_reader.hpp"
 #include "io/material_yaml.hpp"
@@ -152,6 +154,70 @@ TEST_F(EcmCalibrate, AFileThatCannotBeWrittenOnceTheRunHasBegunFailsTheRunAndKee
             ecm::io::kExitRunFailed);
   EXPECT_NE(err_.find("m.yaml"), std::string::npos) << err_;
   EXPECT_TRUE(fs::exists(out / "summary.json"));
+}
+
+}  // namespace
+
+namespace {
+
+// --write-umat: ecm's UMAT card for the calibrated law, one *MATERIAL per element size, its
+// constants those of the summary (E_p solved for G_F = 0.11 N/mm with the paper's concrete), the
+// count declared on *USER MATERIAL equal to the values listed (a forgotten constant crashes
+// CalculiX before the UMAT can say so).
+TEST_F(EcmCalibrate, WritesTheUmatCardOfTheCalibratedLaw) {
+  const fs::path out = dir_ / "umat", card = dir_ / "concrete.inp";
+  ASSERT_EQ(run("--E 32000 --nu 0.2 --ft 3.0 --GF 0.11 --h 0.05 --n 0.128 --name concrete --out '" + out.string() +
+                "' --write-umat '" + card.string() + "' --element-size 2.5,5"),
+            0)
+      << err_;
+  EXPECT_NE(out_.find("UMAT card written to"), std::string::npos) << out_;
+  const std::string text = read(card);
+  const double ep = summary(out)["Ep"].get<double>();
+  std::istringstream in(text);
+  std::string line;
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> constants;
+  int declared = 0;
+  bool data = false;
+  while (std::getline(in, line)) {
+    if (line.rfind("*MATERIAL, NAME=", 0) == 0) names.push_back(line.substr(16));
+    if (line.rfind("*USER MATERIAL, CONSTANTS=", 0) == 0) {
+      declared = std::stoi(line.substr(26));
+      constants.emplace_back();
+      data = true;
+      continue;
+    }
+    if (line.rfind("*", 0) == 0) data = false;
+    if (!data) continue;
+    std::istringstream values(line);
+    std::string v;
+    while (std::getline(values, v, ',')) constants.back().push_back(std::stod(v));
+  }
+  ASSERT_EQ(names, (std::vector<std::string>{"ABAQUS_CONCRETE_H2p5", "ABAQUS_CONCRETE_H5"}));
+  ASSERT_EQ(constants.size(), 2u);
+  for (const auto& c : constants) {
+    ASSERT_EQ(static_cast<int>(c.size()), declared);
+    EXPECT_EQ(c[0], 1.0);
+    EXPECT_EQ(c[1], 32000.0);
+    EXPECT_EQ(c[2], 0.2);
+    EXPECT_EQ(c[3], 3.0);
+    EXPECT_EQ(c[4], ep);  // the shortest text that reads back as the same double
+    EXPECT_EQ(c[5], 0.128);
+    EXPECT_EQ(c[6], 0.05);
+  }
+  EXPECT_EQ(constants[0][7], 2.5);
+  EXPECT_EQ(constants[1][7], 5.0);
+}
+
+TEST_F(EcmCalibrate, AUmatCardThatCalculiXCouldNotUseIsRefusedBeforeTheRun) {
+  const std::string base = "--E 32000 --nu 0.2 --ft 3.0 --GF 0.11 --h 0.05 --n 0.128 --out '" + (dir_ / "o").string() +
+                           "' --write-umat '" + (dir_ / "c.inp").string() + "'";
+  EXPECT_EQ(run(base), ecm::io::kExitBadInput);  // CalculiX passes no CELENT: the sizes are needed
+  EXPECT_NE(err_.find("--element-size"), std::string::npos) << err_;
+  EXPECT_EQ(run(base + " --element-size 0.05"), ecm::io::kExitBadInput);  // H = h
+  EXPECT_NE(err_.find("element size H = 0.05"), std::string::npos) << err_;
+  EXPECT_EQ(run(base + " --umat-dialect abaqus"), 0) << err_;  // H = 0: Abaqus's CELENT
+  EXPECT_NE(read(dir_ / "c.inp").find("*MATERIAL, NAME=CALIBRATED\n"), std::string::npos);
 }
 
 }  // namespace

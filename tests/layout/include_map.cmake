@@ -1,17 +1,18 @@
 # The project's rooms and who may include whom (docs/layout.md, "Layout"):
 #   material <- io <- {driver, calibration, mpm} <- study <- python
 # (python/ includes study/ for ecm-study's plan and report on the Dask path, python/ecm/study.py)
-#   material <- umat (the Abaqus UMAT: a shared library over the material alone)
+#   material <- umat (the Abaqus UMAT: a shared library over the material alone) <- {driver, calibration}
+# (ecm-point drives a UMAT with ecm's PROPS and ecm-calibrate writes its card: umat/umat_props.hpp)
 # Run as: cmake -DROOT=<source tree> -P include_map.cmake. Fails naming every file that includes
 # a folder it must not. bench/, tests/, fuzz/ and examples/ may include every folder and are not
 # checked.
 set(allowed_material material)
 set(allowed_io io material)
-set(allowed_driver driver io material)
-set(allowed_calibration calibration io material)
+set(allowed_driver driver io umat material)
+set(allowed_calibration calibration io umat material)
 set(allowed_mpm mpm io material)
-set(allowed_study study mpm driver io material)
-set(allowed_python python study mpm driver calibration io material)
+set(allowed_study study mpm driver io umat material)
+set(allowed_python python study mpm driver calibration io umat material)
 set(allowed_umat umat material)
 set(allowed_cohesive cohesive io material)
 set(rooms material io driver calibration mpm study python umat cohesive)

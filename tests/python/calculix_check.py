@@ -24,6 +24,7 @@ from conftest import SOURCE  # noqa: E402
 
 sys.path.insert(0, str(SOURCE / "scripts/calculix"))
 import ccx_dat  # noqa: E402
+import deck_check  # noqa: E402
 import element_inp  # noqa: E402
 
 CCX = os.environ.get("ECM_CCX", "")
@@ -47,15 +48,18 @@ STRAIN = ["eps_xx", "eps_yy", "eps_zz", "gamma_xy", "gamma_xz", "gamma_yz"]
 STATE = {1: "integrity", 2: "normal_x", 3: "normal_y", 4: "normal_z", 15: "dissipation", 16: "damage"}
 
 
-def run_ccx(tmp_path, steps, direction=None):
-    """Writes and runs the element; returns (the trace's last call per (increment, point), .dat tables)."""
+def run_ccx(tmp_path, steps, direction=None, card=None):
+    """Writes and runs the element (PROPS, or the material `card` file included); returns (the
+    trace's last call per (increment, point), .dat tables)."""
     inp = tmp_path / "element.inp"
-    args = [str(inp), "--props", ",".join(map(str, PROPS)), "--size", str(SIZE)]
+    material = ["--card", str(card)] if card else ["--props", ",".join(map(str, PROPS))]
+    args = [str(inp), *material, "--size", str(SIZE)]
     if direction:
         args += ["--direction", ",".join(map(str, direction))]
     for s in steps:
         args += ["--step", s]
     assert element_inp.main(args) == 0
+    deck_check.check(inp, ecm=True)
     trace = tmp_path / "trace.txt"
     env = dict(os.environ, ECM_UMAT_TRACE=str(trace), OMP_NUM_THREADS="1")
     p = subprocess.run([CCX, "-i", "element"], cwd=tmp_path, env=env, capture_output=True, text=True, timeout=600)
@@ -148,6 +152,43 @@ def test_pulled_along_a_direction_off_the_mesh_axes(tmp_path):
     assert np.allclose(np.abs(n), np.array(d) / 3.0, rtol=0, atol=1e-12)
     worst = compare(last, dat, total, history)
     print("pulled along (1, 2, 2): worst relative differences", worst)
+
+
+def _written(path, text):
+    path.write_text(text)
+    return path
+
+
+def test_the_card_ecm_calibrate_writes_runs_in_calculix_as_ecm_point(tmp_path):
+    """The UMAT card of a calibration (ecm.calibrate(write_umat=...), as ecm-calibrate
+    --write-umat): E_p solved for G_F = 0.11 N/mm, one *MATERIAL for H = 2.5 mm, included as it is
+    in the element's deck; CalculiX runs it along the first test's path and the points follow
+    ecm-point with the calibrated material, as above. A deck whose CONSTANTS disagrees with its
+    values is refused before ccx reads it."""
+    card = tmp_path / "concrete.inp"
+    summary = ecm.calibrate(youngs_modulus=32000.0, poisson_ratio=0.2, tensile_strength=3.0, fracture_energy=0.11,
+                            band_width=0.05, softening_exponent=0.128, name="concrete", write_umat=str(card),
+                            element_sizes=[SIZE])
+    assert deck_check.user_material_problems(card, ecm=True) == []
+    steps = ["200:eps_xx=2e-4", "200:eps_xx=2e-4,gamma_xz=5e-4,gamma_xy=1e-3"]
+    last, dat, total = run_ccx(tmp_path, steps, card=card)
+    zero = {"eps_yy": 0, "eps_zz": 0, "gamma_yz": 0}
+    material = dict(CONCRETE, softening_modulus=summary["Ep"])
+    scene = {"name": "ccx-card", "material": material, "hypothesis": "three_dimensional", "effective_size": SIZE,
+             "path": {"segments": [{"increments": 200, "eps_xx": 2e-4, "gamma_xz": 0, "gamma_xy": 0, **zero},
+                                   {"increments": 200, "eps_xx": 2e-4, "gamma_xz": 5e-4, "gamma_xy": 1e-3, **zero}]}}
+    history = ecm.run_point_3d(scene, tmp_path / "point").history
+    assert np.max(history["damage"]) > 0.99
+    worst = compare(last, dat, total, history)
+    print("the calibrated card: worst relative differences", worst)
+    wrong = tmp_path / "wrong.inp"
+    wrong.write_text(card.read_text().replace("CONSTANTS=9", "CONSTANTS=8"))
+    problems = deck_check.user_material_problems(wrong)
+    assert len(problems) == 1 and "declares CONSTANTS=8 but lists 9" in problems[0], problems
+    # CalculiX itself runs a deck that declares more constants than it lists (measured: exit 0,
+    # the tenth constant unwritten); the check refuses it.
+    assert "declares CONSTANTS=10 but lists 9" in deck_check.user_material_problems(
+        _written(tmp_path / "ten.inp", card.read_text().replace("CONSTANTS=9", "CONSTANTS=10")))[0]
 
 
 def test_lpanel_against_ecm_mpm(tmp_path):

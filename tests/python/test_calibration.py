@@ -78,3 +78,26 @@ def test_numpy_scalars_are_numbers():
     as_numpy = ecm.calibrate(softening_exponent=np.float64(0.128), youngs_modulus=np.int64(32000),
                              tensile_strength=np.float64(3.0), fracture_energy=0.11, band_width=0.05)
     assert as_numpy == plain
+
+
+def test_calibrate_writes_the_material_and_the_umat_card_as_the_tool_does(tmp_path):
+    """write_material and write_umat (with element_sizes) write what ecm-calibrate --write-material
+    and --write-umat write: the material reads back with the solved E_p, and the card holds one
+    *MATERIAL per element size with CONSTANTS=9 and E_p as the summary's, to the last bit."""
+    summary = ecm.calibrate(youngs_modulus=32000.0, poisson_ratio=0.2, tensile_strength=3.0, fracture_energy=0.11,
+                            band_width=0.05, softening_exponent=0.128, name="concrete",
+                            write_material=str(tmp_path / "concrete.yaml"), write_umat=str(tmp_path / "concrete.inp"),
+                            element_sizes=[2.5, 5.0])
+    material = ecm.Material.from_file(tmp_path / "concrete.yaml")
+    assert material.name == "concrete" and material.model == "enriched"
+    line = next(l for l in (tmp_path / "concrete.yaml").read_text().splitlines() if l.startswith("softening_modulus:"))
+    assert float(line.split(":")[1].split("#")[0]) == pytest.approx(summary["Ep"], rel=1e-12)
+    card = (tmp_path / "concrete.inp").read_text().splitlines()
+    assert [l for l in card if l.startswith("*MATERIAL")] == ["*MATERIAL, NAME=ABAQUS_CONCRETE_H2p5",
+                                                              "*MATERIAL, NAME=ABAQUS_CONCRETE_H5"]
+    first = card.index("*USER MATERIAL, CONSTANTS=9")
+    constants = [float(v) for v in (card[first + 1] + "," + card[first + 2]).split(",")]
+    assert len(constants) == 9 and constants[4] == summary["Ep"] and constants[7] == 2.5
+    with pytest.raises(ValueError, match="element-size"):
+        ecm.calibrate(youngs_modulus=32000.0, poisson_ratio=0.2, tensile_strength=3.0, fracture_energy=0.11,
+                      band_width=0.05, softening_exponent=0.128, write_umat=str(tmp_path / "x.inp"))
