@@ -13,12 +13,13 @@ Units everywhere: mm, N, MPa, tonne, s (density in t/mm^3).
 The compiled part is ecm._ecm (python/src/); what the tools read and write is documented in
 docs/inputs.md and docs/tools.md, and every function here reads the same inputs the same way.
 """
-import json
-import os
-import tempfile
-from dataclasses import dataclass, field
+# Imported under private names: dir(ecm) and `from ecm import *` show the module's own API only.
+import json as _json
+import os as _os
+import tempfile as _tempfile
+from dataclasses import dataclass as _dataclass, field as _field
 
-import numpy as np
+import numpy as _np
 
 from ._ecm import (STATUS, BandState, CalibrationError, CheckpointError, InputError, Material, OutputError,
                    ParameterError, PointArray, PointState, UpdateResult, __version__, fracture_energy,
@@ -35,7 +36,7 @@ __all__ = ["STATUS", "BandState", "CalibrationError", "CheckpointError", "InputE
 
 
 def _path_or_dict(x):
-    return os.fspath(x) if isinstance(x, os.PathLike) else x
+    return _os.fspath(x) if isinstance(x, _os.PathLike) else x
 
 
 def load_scene(path):
@@ -44,21 +45,21 @@ def load_scene(path):
     numbers, strings strings, with YAML's rules as the tools apply them ('1e-6' is a number, which
     PyYAML reads as a string), and relative `file:` references made absolute. Errors in a dict name
     the key path ("<dict>: key 'solver.tolerance': ...")."""
-    return _ecm._load_yaml(os.fspath(path))
+    return _ecm._load_yaml(_os.fspath(path))
 
 
-@dataclass
+@_dataclass
 class PointRun:
     """A point run: history (column of history.csv -> array, one entry per row) and summary
     (the content of summary.json)."""
-    history: dict = field(default_factory=dict)
-    summary: dict = field(default_factory=dict)
+    history: dict = _field(default_factory=dict)
+    summary: dict = _field(default_factory=dict)
 
 
 def run_point(scene, out=None):
     """Runs a point scene (a YAML file's path, or a dict with the same keys) as ecm-point does.
     With `out`, also writes ecm-point's output folder there."""
-    columns, rows, summary = _ecm._run_point(_path_or_dict(scene), None if out is None else os.fspath(out))
+    columns, rows, summary = _ecm._run_point(_path_or_dict(scene), None if out is None else _os.fspath(out))
     return PointRun({c: rows[:, i].copy() for i, c in enumerate(columns)}, summary)
 
 
@@ -67,14 +68,14 @@ def run_point_3d(scene, out=None):
     ecm-point does and returns its history.csv as columns and its summary; the files go to `out`
     (a temporary folder if None)."""
     def read(folder):
-        completed, _ = _ecm._run_point_3d(_path_or_dict(scene), os.fspath(folder))
-        table = np.genfromtxt(os.path.join(folder, "history.csv"), delimiter=",", names=True)
-        with open(os.path.join(folder, "summary.json")) as f:
-            summary = json.load(f)
-        return PointRun({c: np.asarray(table[c], dtype=float) for c in table.dtype.names}, summary)
+        completed, _ = _ecm._run_point_3d(_path_or_dict(scene), _os.fspath(folder))
+        table = _np.genfromtxt(_os.path.join(folder, "history.csv"), delimiter=",", names=True)
+        with open(_os.path.join(folder, "summary.json")) as f:
+            summary = _json.load(f)
+        return PointRun({c: _np.asarray(table[c], dtype=float) for c in table.dtype.names}, summary)
     if out is None:
-        with tempfile.TemporaryDirectory(prefix="ecm-point-3d-") as tmp:
-            return read(os.path.join(tmp, "point"))
+        with _tempfile.TemporaryDirectory(prefix="ecm-point-3d-") as tmp:
+            return read(_os.path.join(tmp, "point"))
     return read(out)
 
 
@@ -83,9 +84,9 @@ def snapback_study(study, out=None):
     Returns {"rows": {column: array over H}, "snapback_size", "critical_size", ...}; the study's
     files go to `out` (a temporary folder if None)."""
     if out is None:
-        with tempfile.TemporaryDirectory(prefix="ecm-study-") as tmp:
-            return _ecm._snapback_study(_path_or_dict(study), os.path.join(tmp, "study"))
-    return _ecm._snapback_study(_path_or_dict(study), os.fspath(out))
+        with _tempfile.TemporaryDirectory(prefix="ecm-study-") as tmp:
+            return _ecm._snapback_study(_path_or_dict(study), _os.path.join(tmp, "study"))
+    return _ecm._snapback_study(_path_or_dict(study), _os.fspath(out))
 
 
 def calibrate(file=None, out=None, **keys):
@@ -96,17 +97,17 @@ def calibrate(file=None, out=None, **keys):
     write_material="m.yaml" and write_umat="card.inp" (with element_sizes=[2.5, ...] in mm and
     umat_dialect="calculix" or "abaqus") write the calibrated material and ecm's UMAT card as
     ecm-calibrate --write-material and --write-umat do (both need poisson_ratio)."""
-    return _ecm._calibrate(None if file is None else os.fspath(file), keys, None, None,
-                           None if out is None else os.fspath(out))
+    return _ecm._calibrate(None if file is None else _os.fspath(file), keys, None, None,
+                           None if out is None else _os.fspath(out))
 
 
 def fit_softening(w, traction, out=None, **keys):
     """Fits (E_p, n) to measured points (w in mm, traction in MPa) while dissipating exactly G_F,
     as ecm-calibrate --fit-csv does with the same points. keys: youngs_modulus, tensile_strength,
     fracture_energy, band_width. Returns the summary ("n", "Ep", "fit_residual", ...)."""
-    w = np.asarray(w, dtype=float).ravel().tolist()
-    traction = np.asarray(traction, dtype=float).ravel().tolist()
-    return _ecm._calibrate(None, keys, w, traction, None if out is None else os.fspath(out))
+    w = _np.asarray(w, dtype=float).ravel().tolist()
+    traction = _np.asarray(traction, dtype=float).ravel().tolist()
+    return _ecm._calibrate(None, keys, w, traction, None if out is None else _os.fspath(out))
 
 
 def run_scene(scene, out, threads=0, preset=None, snapshots=True, plot=True, restart=False, max_steps=0,
@@ -126,8 +127,8 @@ def run_scene(scene, out, threads=0, preset=None, snapshots=True, plot=True, res
     check=False, which returns the dict with status "failed" instead."""
     if progress is not None and not callable(progress):
         raise TypeError(f"progress must be callable as progress(time, end_time, step) or None, got {type(progress).__name__}")
-    result = _ecm._run_scene(_path_or_dict(scene), os.fspath(out), threads, preset, snapshots, plot, restart, max_steps,
+    result = _ecm._run_scene(_path_or_dict(scene), _os.fspath(out), threads, preset, snapshots, plot, restart, max_steps,
                              progress)
     if check:
-        failures.raise_for(result, os.fspath(out))
+        failures.raise_for(result, _os.fspath(out))
     return result

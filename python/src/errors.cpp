@@ -1,5 +1,8 @@
 // The library's exceptions as Python exceptions, with the same message the command-line tools
 // print after "error: " (for input: "FILE:LINE: reason").
+#include <cerrno>
+#include <string>
+
 #include "calibration/calibration_error.hpp"
 #include "io/output_error.hpp"
 #include "io/value_error.hpp"
@@ -10,6 +13,11 @@
 #include "python/src/bindings.hpp"
 
 namespace ecm::python {
+
+namespace {
+// The reason io gives for a file that does not exist (io/yaml_input.cpp, io/csv_reader.cpp).
+const std::string kMissingFile = "cannot open file: it does not exist";
+}  // namespace
 
 void bindErrors(py::module_& m) {
   // Bad input of any kind is a ValueError: a file's key or value (InputError, "FILE:LINE: reason"),
@@ -35,6 +43,11 @@ void bindErrors(py::module_& m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const io::InputError& e) {
+      if (e.reason == kMissingFile) {  // a file that is not there is Python's FileNotFoundError
+        py::object error = py::module_::import("builtins").attr("FileNotFoundError")(ENOENT, "No such file: " + e.file, e.file);
+        PyErr_SetObject(PyExc_FileNotFoundError, error.ptr());
+        return;
+      }
       inputError(e.what());
     } catch (const DictInputError& e) {
       inputError(e.what());

@@ -101,3 +101,17 @@ def test_calibrate_writes_the_material_and_the_umat_card_as_the_tool_does(tmp_pa
     with pytest.raises(ValueError, match="element-size"):
         ecm.calibrate(youngs_modulus=32000.0, poisson_ratio=0.2, tensile_strength=3.0, fracture_energy=0.11,
                       band_width=0.05, softening_exponent=0.128, write_umat=str(tmp_path / "x.inp"))
+
+
+def test_a_missing_file_is_file_not_found_and_the_module_shows_its_own_names_only(tmp_path):
+    """A path that does not exist raises FileNotFoundError (an OSError, with the path), as open()
+    does, wherever a function takes a file; dir(ecm) lists the module's API, not what it imports."""
+    missing = tmp_path / "missing.yaml"
+    for call in (lambda: ecm.Material.from_file(missing), lambda: ecm.run_point(missing),
+                 lambda: ecm.calibrate(missing), lambda: ecm.load_scene(missing)):
+        with pytest.raises(FileNotFoundError) as caught:
+            call()
+        assert caught.value.filename == str(missing)
+    public = {name for name in dir(ecm) if not name.startswith("_")}
+    assert not public & {"np", "os", "json", "tempfile", "dataclass", "field"}, public
+    assert {name for name in ecm.__all__ if not name.startswith("_")} <= public

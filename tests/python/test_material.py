@@ -132,8 +132,8 @@ def test_bad_parameters_are_refused_naming_the_key():
         m.update(ecm.PointState(), [0, 0, 0], 10.0, snap_back="jump")
 
 
-def test_a_file_that_does_not_exist_is_an_input_error(tmp_path):
-    with pytest.raises(ecm.InputError, match="nope.yaml"):
+def test_a_file_that_does_not_exist_is_file_not_found(tmp_path):
+    with pytest.raises(FileNotFoundError, match="nope.yaml"):
         ecm.Material.from_file(tmp_path / "nope.yaml")
 
 

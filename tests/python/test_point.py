@@ -104,5 +104,5 @@ def test_load_scene_reads_as_the_tools_read(source, tmp_path):
     text = tmp_path / "t.yaml"
     text.write_text("a: 1e-6\nb: '1e-6'\nc: 10\nd: true\ne: [1, x, .inf]\nf: ~\n")
     assert ecm.load_scene(text) == {"a": 1e-6, "b": "1e-6", "c": 10, "d": True, "e": [1, "x", float("inf")], "f": None}
-    with pytest.raises(ecm.InputError, match="nope.yaml"):
+    with pytest.raises(FileNotFoundError, match="nope.yaml"):
         ecm.load_scene(tmp_path / "nope.yaml")
