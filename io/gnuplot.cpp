@@ -64,6 +64,7 @@ std::string gnuplotScript(const PlotSpec& spec, const std::string& pngName) {
   if (spec.logY) s << "set logscale y\n";
   if (!spec.xRange.empty()) s << "set xrange " << spec.xRange << "\n";
   if (!spec.yRange.empty()) s << "set yrange " << spec.yRange << "\n";
+  for (const auto& c : spec.settings) s << c << "\n";
   for (const auto& f : spec.functions) s << f << "\n";
   s << "plot ";
   for (std::size_t i = 0; i < spec.series.size(); ++i) {

@@ -29,6 +29,7 @@ struct PlotSpec {
   std::string xRange;                  // e.g. "[0:0.3]"; empty = automatic
   std::string yRange;
   std::vector<std::string> functions;  // inline definitions, e.g. "f(x) = exp(-x)"
+  std::vector<std::string> settings;   // further gnuplot commands before the plot, e.g. "set ytics 1"
   std::vector<PlotSeries> series;
   int width = 900;
   int height = 600;

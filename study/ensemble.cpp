@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <sstream>
 
 #include "io/atomic_file.hpp"
 #include "io/gnuplot.hpp"
@@ -46,8 +47,9 @@ SampleStatistics sampleStatistics(const std::vector<double>& x, double confidenc
   return s;
 }
 
-WeibullFit fitWeibull(const std::vector<double>& values) {
+WeibullFit fitWeibull(const std::vector<double>& values, double confidence) {
   WeibullFit w;
+  w.confidence = confidence;
   std::vector<double> x = values;
   std::sort(x.begin(), x.end());
   if (x.size() < 2 || x.front() <= 0.0 || x.front() == x.back()) return w;
@@ -93,6 +95,16 @@ WeibullFit fitWeibull(const std::vector<double>& values) {
   }
   w.rSquared = 1.0 - residual / total;
   w.ksDistance = ks;
+  // The inverse Fisher information of the two-parameter Weibull per sample: 6/pi^2 m^2 for m and
+  // (pi^2/6 + (1 - gamma)^2) / (pi^2/6) scale^2 / m^2 for the scale (gamma: Euler's constant).
+  const double z = gsl_cdf_ugaussian_Pinv(0.5 + 0.5 * confidence);
+  const double piSquaredOver6 = M_PI * M_PI / 6.0, oneMinusGamma = 1.0 - 0.57721566490153286;
+  const double modulusSpread = z * std::sqrt(1.0 / (piSquaredOver6 * n));
+  const double scaleSpread = z * std::sqrt((piSquaredOver6 + oneMinusGamma * oneMinusGamma) / (piSquaredOver6 * n)) / w.modulus;
+  w.modulusLow = w.modulus * std::exp(-modulusSpread);
+  w.modulusHigh = w.modulus * std::exp(modulusSpread);
+  w.scaleLow = w.scale * std::exp(-scaleSpread);
+  w.scaleHigh = w.scale * std::exp(scaleSpread);
   return w;
 }
 
@@ -178,6 +190,7 @@ void plots(const Study& study, const std::vector<Mesh>& meshes, const std::vecto
     histText += "\n";
   }
   io::writeFileAtomically(dir / "ensemble_histogram.csv", histText);
+  if (most <= 10) hist.settings.push_back("set ytics 1");  // counts: whole numbers (gnuplot would tick 0.5)
   const double bar = width / static_cast<double>(meshes.size() + 1);
   const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
   for (std::size_t g = 0; g < meshes.size(); ++g) {
@@ -236,7 +249,8 @@ nlohmann::json writeEnsemble(const Study& study, const std::vector<PlannedRun>& 
   io::writeFileAtomically(dir / "ensemble_samples.csv", samplesText);
   std::string table = "mesh,samples,failed,stress_mean_MPa,stress_std_MPa,stress_cov,stress_mean_low,stress_mean_high,"
                       "stress_cov_low,stress_cov_high,samples_mean_within_1pct,strain_mean,strain_std,strain_cov,"
-                      "weibull_modulus,weibull_scale_MPa,weibull_r2,weibull_ks,label\n";
+                      "weibull_modulus,weibull_scale_MPa,weibull_r2,weibull_ks,weibull_modulus_low,weibull_modulus_high,"
+                      "weibull_scale_low_MPa,weibull_scale_high_MPa,label\n";
   nlohmann::json out = nlohmann::json::array();
   std::vector<WeibullFit> fits;
   for (const Mesh& m : meshes) {
@@ -245,11 +259,17 @@ nlohmann::json writeEnsemble(const Study& study, const std::vector<PlannedRun>& 
     const SampleStatistics a = sampleStatistics(stress), b = sampleStatistics(strain);
     const WeibullFit w = fitWeibull(stress);
     fits.push_back(w);
-    table += std::to_string(fits.size()) + "," + std::to_string(m.samples.size()) + "," + std::to_string(m.failed);
-    for (const double v : {a.mean, a.stdDev, a.cov, a.meanLow, a.meanHigh, a.covLow, a.covHigh}) table += "," + csvNumber(v);
-    table += "," + (a.samplesForOnePercent > 0 ? std::to_string(a.samplesForOnePercent) : std::string());
-    for (const double v : {b.mean, b.stdDev, b.cov, w.modulus, w.scale, w.rSquared, w.ksDistance}) table += "," + csvNumber(v);
-    table += ",\"" + m.label + "\"\n";
+    // Cells appended, not built with "," + text: GCC 12 warns falsely (-Wrestrict) on the latter.
+    const auto cell = [&](const std::string& text) { table.append(",").append(text); };
+    table.append(std::to_string(fits.size()));
+    cell(std::to_string(m.samples.size()));
+    cell(std::to_string(m.failed));
+    for (const double v : {a.mean, a.stdDev, a.cov, a.meanLow, a.meanHigh, a.covLow, a.covHigh}) cell(csvNumber(v));
+    cell(a.samplesForOnePercent > 0 ? std::to_string(a.samplesForOnePercent) : std::string());
+    for (const double v : {b.mean, b.stdDev, b.cov, w.modulus, w.scale, w.rSquared, w.ksDistance, w.modulusLow,
+                           w.modulusHigh, w.scaleLow, w.scaleHigh})
+      cell(csvNumber(v));
+    table.append(",\"").append(m.label).append("\"\n");
     out.push_back({{"mesh", m.label},
                    {"index", fits.size()},
                    {"samples", m.samples.size()},
@@ -258,8 +278,12 @@ nlohmann::json writeEnsemble(const Study& study, const std::vector<PlannedRun>& 
                    {"samples_for_mean_within_1pct", a.samplesForOnePercent > 0 ? nlohmann::json(a.samplesForOnePercent) : nlohmann::json()},
                    {"strain_at_peak", statisticsJson(b)},
                    {"weibull", {{"modulus", jsonValue(w.modulus)}, {"scale_MPa", jsonValue(w.scale)},
+                                {"confidence", w.confidence},
+                                {"modulus_interval", {jsonValue(w.modulusLow), jsonValue(w.modulusHigh)}},
+                                {"scale_interval_MPa", {jsonValue(w.scaleLow), jsonValue(w.scaleHigh)}},
                                 {"r_squared", jsonValue(w.rSquared)}, {"ks_distance", jsonValue(w.ksDistance)},
-                                {"fit", "maximum likelihood; r_squared on the Weibull plot with median ranks"}}}});
+                                {"fit", "maximum likelihood; intervals asymptotic (inverse Fisher information, on ln m and "
+                                        "ln scale); r_squared on the Weibull plot with median ranks"}}}});
   }
   io::writeFileAtomically(dir / "ensemble.csv", table);
   plots(study, meshes, fits, dir);
@@ -271,5 +295,32 @@ nlohmann::json writeEnsemble(const Study& study, const std::vector<PlannedRun>& 
 }
 
 }  // namespace detail
+
+std::string ensembleTable(const nlohmann::json& ensemble) {
+  if (!ensemble.is_object() || !ensemble.contains("meshes")) return "";
+  const auto number = [](const nlohmann::json& v, int digits) { return v.is_number() ? shortNumber(v.get<double>(), digits) : std::string("-"); };
+  const auto interval = [&](const nlohmann::json& v, int digits) {
+    if (!v.is_array() || v.size() != 2) return std::string("-");
+    std::string text(1, '[');  // appended, not "[" + ...: GCC 12 warns falsely (-Wrestrict) on the latter
+    text.append(number(v[0], digits)).append(", ").append(number(v[1], digits)).append("]");
+    return text;
+  };
+  std::ostringstream out;
+  double confidence = 0.95;
+  for (const auto& m : ensemble["meshes"]) {
+    const auto& s = m["peak_mean_stress_MPa"];
+    const auto& w = m["weibull"];
+    if (s.contains("confidence")) confidence = s["confidence"].get<double>();
+    out << "  " << m["mesh"].get<std::string>() << ": " << m["samples"].get<int>() << " samples";
+    if (m["failed"].get<int>() > 0) out << " (" << m["failed"].get<int>() << " failed)";
+    out << "\n    strength mean " << number(s["mean"], 4) << " MPa " << interval(s["mean_interval"], 4) << ", CV "
+        << number(s["cov"], 3) << " " << interval(s["cov_interval"], 3) << "\n    Weibull modulus " << number(w["modulus"], 3)
+        << " " << interval(w["modulus_interval"], 3) << ", scale " << number(w["scale_MPa"], 4) << " MPa "
+        << interval(w["scale_interval_MPa"], 4) << "\n";
+  }
+  std::string head("ensemble (intervals at ");
+  head.append(shortNumber(100.0 * confidence, 3)).append(" % confidence):\n");
+  return head + out.str();
+}
 
 }  // namespace ecm::study

@@ -55,8 +55,8 @@ int main(int argc, char** argv) {
     options.progress = !quiet;
     options.table = &std::cout;
     const ecm::study::StudyResult r = ecm::study::runStudy(study, plan, options);
-    std::fprintf(stderr, "%zu runs -> %s (study.csv, summary.json, pareto.png)\n", r.runs.size(),
-                 options.outputDir.string().c_str());
+    std::fprintf(stderr, "%zu runs -> %s (study.csv, summary.json, %s)\n", r.runs.size(), options.outputDir.string().c_str(),
+                 r.ensemble.is_null() ? "pareto.png" : "ensemble.csv, ensemble_histogram.png, weibull.png");
     return r.allCompleted ? ecm::io::kExitDone : ecm::io::kExitRunFailed;
   } catch (const ecm::io::InputError& e) {
     ecm::io::printError("ecm-study", e.what());

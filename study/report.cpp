@@ -84,7 +84,8 @@ void writeTable(const Study& study, const StudyResult& result, std::ostream& out
   for (const char* h : {"status", "time_s", "cpu_s", "steps", "particles", "B/particle", "rss_MB"}) header.push_back(h);
   for (const std::string& m : study.metrics) header.push_back(m);
   header.push_back("error");
-  header.push_back("pareto");
+  const bool ensemble = study.samples > 0;  // no Pareto front among samples
+  if (!ensemble) header.push_back("pareto");
   std::vector<std::vector<std::string>> rows;
   for (const RunRecord& r : result.runs) {
     std::vector<std::string> row{std::to_string(r.id) + (r.reference ? "R" : "")};
@@ -98,7 +99,7 @@ void writeTable(const Study& study, const StudyResult& result, std::ostream& out
     row.push_back(shortNumber(r.peakRssMb, 3));
     for (const double m : r.metrics) row.push_back(shortNumber(m, 3));
     row.push_back(shortNumber(r.error, 3));
-    row.push_back(r.pareto ? "*" : "");
+    if (!ensemble) row.push_back(r.pareto ? "*" : "");
     rows.push_back(std::move(row));
   }
   std::vector<std::size_t> width(header.size(), 0);

@@ -471,15 +471,26 @@ StudyResult runStudy(const Study& study, const std::vector<PlannedRun>& plan, co
     cost.push_back(candidate ? r.wallTime : NAN);
     error.push_back(candidate ? r.error : NAN);
   }
-  const std::vector<bool> front = paretoFront(cost, error);
+  // An ensemble's runs differ by their seed, a sample and not a setting: no run is "better" than
+  // another, so no Pareto front is marked among them (ensemble.csv compares the meshes).
+  const bool ensemble = study.samples > 0;
+  const std::vector<bool> front = ensemble ? std::vector<bool>(result.runs.size(), false) : paretoFront(cost, error);
   for (std::size_t i = 0; i < result.runs.size(); ++i) result.runs[i].pareto = front[i];
 
   writeTableCsv(study, result, dir / "study.csv");
   nlohmann::json summary = summaryJson(study, result, options);
-  if (study.samples > 0) result.ensemble = summary["ensemble"] = writeEnsemble(study, plan, result, dir);
+  if (ensemble) {
+    result.ensemble = summary["ensemble"] = writeEnsemble(study, plan, result, dir);
+    summary["pareto"] = nullptr;
+    summary["pareto_note"] = "an ensemble: its runs differ by their random seed (samples), not by a setting, so no Pareto "
+                             "front is marked; ensemble.csv and the ensemble object compare the meshes";
+  }
   io::writeJsonSummary(summary, dir / "summary.json");
-  plotPareto(study, result, dir);
-  if (options.table) writeTable(study, result, *options.table);
+  if (!ensemble) plotPareto(study, result, dir);
+  if (options.table) {
+    writeTable(study, result, *options.table);
+    *options.table << ensembleTable(result.ensemble);
+  }
   return result;
 }
 

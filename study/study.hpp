@@ -224,12 +224,23 @@ SampleStatistics sampleStatistics(const std::vector<double>& x, double confidenc
 // A two-parameter Weibull fit of positive values, P(x) = 1 - exp(-(x / scale)^modulus): the
 // maximum-likelihood modulus and scale, and the fit's quality on the Weibull plot (ln x against
 // ln(-ln(1 - F)), median ranks F = (i - 0.3) / (n + 0.4)): the coefficient of determination R^2
-// of the points against the fitted line, and the Kolmogorov-Smirnov distance of the fit.
+// of the points against the fitted line, and the Kolmogorov-Smirnov distance of the fit. The
+// intervals at `confidence` are the maximum-likelihood estimates' asymptotic ones (the inverse
+// Fisher information: var(m) = 0.6079 m^2 / n, var(scale) = 1.1087 scale^2 / (n m^2)), taken on
+// ln m and ln scale so that they stay positive; with few samples the modulus is biased high
+// and its interval too narrow (docs/dask.md, "Ensembles").
 struct WeibullFit {
   double modulus = NAN, scale = NAN;
   double rSquared = NAN, ksDistance = NAN;
+  double confidence = 0.95;
+  double modulusLow = NAN, modulusHigh = NAN, scaleLow = NAN, scaleHigh = NAN;
 };
-WeibullFit fitWeibull(const std::vector<double>& x);
+WeibullFit fitWeibull(const std::vector<double>& x, double confidence = 0.95);
+
+// An ensemble's statistics as the terminal shows them (summary.json's "ensemble"): per mesh the
+// samples, the mean strength with its interval, the coefficient of variation with its interval,
+// and the Weibull modulus and scale with theirs. Empty for a null ensemble.
+std::string ensembleTable(const nlohmann::json& ensemble);
 
 // --- closed forms and measures (exposed for tests) ---
 

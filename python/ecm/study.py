@@ -21,8 +21,10 @@ retries are in dask.json). Format and design: docs/dask.md.
 import argparse
 import hashlib
 import json
+import logging
 import os
 import shutil
+import signal
 import sys
 import time
 
@@ -165,6 +167,36 @@ def _write_folder(folder, scene_text, result, repeat, reference_scene=False):
     shutil.rmtree(old, ignore_errors=True)
 
 
+def _outcome(result):
+    """What a run's own files say of it: (status, failure kind or None, message or None).
+    status is the run's ("completed", "failed", "stopped"), or "failed" for a scene refused
+    before it ran (error.txt)."""
+    files = result.get("files", {})
+    if "error.txt" in files:
+        return "failed", "input", files["error.txt"].decode(errors="replace").strip()
+    try:
+        summary = json.loads(files["summary.json"].decode())
+    except (KeyError, ValueError):
+        return "failed", None, "the run left no summary.json"
+    failure = summary.get("failure") or {}
+    return summary.get("status", "failed"), failure.get("kind"), summary.get("error")
+
+
+def _short(text, width=110):
+    text = " ".join(str(text).split())
+    return text if len(text) <= width else text[:width - 3] + "..."
+
+
+def _duration(seconds):
+    if seconds < 10:
+        return "%.1f s" % seconds
+    if seconds < 90:
+        return "%.0f s" % seconds
+    if seconds < 5400:
+        return "%.0f min" % (seconds / 60)
+    return "%.1f h" % (seconds / 3600)
+
+
 def _suspicious(keys, dask_scheduler=None):
     """On the scheduler: how many workers died while running each task (Dask's `suspicious`)."""
     return {k: (dask_scheduler.tasks[k].suspicious if k in dask_scheduler.tasks else None) for k in keys}
@@ -185,8 +217,15 @@ def run_study(study, out, scheduler=None, client=None, workers=None, threads=1, 
     own_cluster = None
     if client is None:
         if scheduler is None:
-            own_cluster = LocalCluster(n_workers=workers or 2, threads_per_worker=1, processes=True,
-                                       dashboard_address=":0")
+            # The workers start with SIGINT ignored (Python keeps an ignored SIGINT ignored): a
+            # Ctrl-C at the terminal reaches the whole process group, and only this client is to
+            # answer it (one line, main()), not each worker with a traceback.
+            previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+            try:
+                own_cluster = LocalCluster(n_workers=workers or 2, threads_per_worker=1, processes=True,
+                                           dashboard_address=":0")
+            finally:
+                signal.signal(signal.SIGINT, previous)
             scheduler = own_cluster
         try:
             client = Client(scheduler, timeout=30)
@@ -196,6 +235,10 @@ def run_study(study, out, scheduler=None, client=None, workers=None, threads=1, 
             raise ConnectionError("cannot reach the Dask scheduler at %s: %s" % (scheduler, e)) from e
     try:
         return _run(plan, study, out, client, threads, progress)
+    except KeyboardInterrupt:
+        # Stopping with runs in flight: Dask then logs their cancellation; nothing of it is news.
+        logging.getLogger("distributed").setLevel(logging.CRITICAL)
+        raise
     finally:
         if own_cluster is not None:
             client.close()
@@ -244,11 +287,20 @@ def _run(plan, study, out, client, threads, progress):
         futures.append(f)
         meta[f.key] = (ident, folder, text, is_ref, time.time())
     skipped = (len(plan["runs"]) + (1 if plan["reference_scene"] else 0)) - len(jobs) if plan["kind"] == "mpm" else 0
-    if progress and plan["kind"] == "mpm":
-        print("%s: %d runs to do on %d workers (%d already done in %s)" %
-              (plan["name"], len(jobs), len(client.scheduler_info()["workers"]), skipped, out), file=sys.stderr)
+    slots_now = sum(w.get("nthreads", 1) for w in client.scheduler_info()["workers"].values()) or 1
+    if progress:
+        if plan["kind"] == "mpm":
+            print("%s: %d runs to do on %d workers (%d already done in %s)" %
+                  (plan["name"], len(jobs), len(client.scheduler_info()["workers"]), skipped, out), file=sys.stderr)
+        else:
+            print("%s: a point study: its %d runs run here, on the client, not on the cluster (a point run "
+                  "takes milliseconds, less than a Dask task's round trip; docs/dask.md)" %
+                  (plan["name"], len(plan["runs"])), file=sys.stderr)
+        if futures and getattr(client, "dashboard_link", None):
+            print("dashboard: %s" % client.dashboard_link, file=sys.stderr)
     records = []
     done = 0
+    computed = []  # compute_s of the runs done so far, for the ETA
     for f in as_completed(futures):
         ident, folder, text, is_ref, submitted = meta[f.key]
         retries = client.run_on_scheduler(_suspicious, [f.key]).get(f.key)
@@ -256,17 +308,30 @@ def _run(plan, study, out, client, threads, progress):
         try:
             result = f.result()
             _write_folder(folder, text, result, plan["repeat"], reference_scene=is_ref)
+            status, kind, message = _outcome(result)
             record.update(worker=result.get("worker"), host=result.get("host"), started=result["started"] - started,
                           finished=result["finished"] - started, compute_s=result["finished"] - result["started"],
-                          arrived=time.time() - started, status="written")
+                          arrived=time.time() - started, status=status, failure_kind=kind, error=message)
+            computed.append(record["compute_s"])
         except Exception as e:  # the task raised, or Dask gave up on it (KilledWorker): the run is not run
             record.update(status="lost", error="%s: %s" % (type(e).__name__, e))
         f.release()
         records.append(record)
         done += 1
         if progress:
-            print("[%d/%d] run %s: %s%s" % (done, len(futures), ident, record["status"],
-                                            ", worker died %d x: retried" % retries if retries else ""), file=sys.stderr)
+            line = "[%d/%d] run %s: %s" % (done, len(futures), ident, record["status"])
+            if record["status"] == "lost":
+                line += " (%s)" % _short(record["error"])
+            elif record["status"] != "completed":
+                line += " (%s%s)" % (record["failure_kind"] + ": " if record.get("failure_kind") else "",
+                                     _short(record.get("error") or "no message"))
+            if "compute_s" in record:
+                line += ", %s" % _duration(record["compute_s"])
+            if retries:
+                line += ", worker died %d x: retried" % retries
+            if computed and done < len(futures):
+                line += "; about %s to go" % _duration(sum(computed) / len(computed) * (len(futures) - done) / slots_now)
+            print(line, file=sys.stderr)
     wall = time.time() - started
     report = _ecm._report_study(study, out, threads)
     workers = client.scheduler_info()["workers"]
@@ -277,19 +342,32 @@ def _run(plan, study, out, client, threads, progress):
                "task_compute_s": compute,
                "idle_per_task_s": (wall * slots - compute) / len(futures) if futures else None,
                "retried_runs": sum(1 for r in records if r.get("worker_deaths")), "lost_runs":
-               sum(1 for r in records if r["status"] == "lost"), "all_completed": report["all_completed"],
+               sum(1 for r in records if r["status"] == "lost"),
+               "failed_runs": sorted(str(r["run"]) for r in records if r["status"] not in ("completed", "lost")),
+               "all_completed": report["all_completed"],
                "runs": records,
                "notes": "times in s from the client's start; compute_s: the task on its worker (scene files written, "
                         "the run, outputs read); idle_per_task_s = (wall x worker threads - sum of compute_s) / tasks: "
                         "scheduling, transfers and the tail where workers wait for the last runs; worker_deaths: "
-                        "Dask's count of workers that died while running the task (each a retry elsewhere)"}
+                        "Dask's count of workers that died while running the task (each a retry elsewhere); status: the "
+                        "run's own (completed, failed, stopped) or lost (never run); a point study's runs run on the "
+                        "client (tasks 0)"}
     with open(os.path.join(out, "dask.json"), "w", encoding="utf-8") as fh:
         json.dump(cluster, fh, indent=2)
     with open(os.path.join(out, "summary.json"), encoding="utf-8") as fh:
         summary = json.load(fh)
     if progress:
-        print("%d runs -> %s (study.csv, summary.json, pareto.png, dask.json), %.1f s" %
-              (len(plan["runs"]), out, wall), file=sys.stderr)
+        if report.get("ensemble_text"):
+            print(report["ensemble_text"], end="", file=sys.stderr)
+        print("%d runs -> %s (study.csv, summary.json, %s, dask.json), %.1f s" %
+              (len(plan["runs"]), out, "ensemble.csv, weibull.png" if report.get("ensemble") else "pareto.png", wall),
+              file=sys.stderr)
+        not_done = [r for r in records if r["status"] != "completed"]
+        if not_done:
+            print("%d of %d runs did not complete:" % (len(not_done), len(records)), file=sys.stderr)
+            for r in sorted(not_done, key=lambda r: str(r["run"])):
+                print("  run %s: %s (%s)" % (r["run"], r["status"], _short(r.get("error") or r.get("failure_kind") or "")),
+                      file=sys.stderr)
     return summary
 
 
@@ -320,6 +398,13 @@ def main(argv=None):
     try:
         summary = run_study(a.study, out, scheduler=a.scheduler, workers=a.workers, threads=a.threads,
                             progress=not a.quiet)
+    except KeyboardInterrupt:
+        written = len([n for n in os.listdir(os.path.join(out, "runs"))
+                       if not n.endswith((".incoming", ".replaced"))]) if os.path.isdir(os.path.join(out, "runs")) else 0
+        where = "--scheduler %s" % a.scheduler if a.scheduler else "--workers %d" % a.workers
+        print("stopped: %d run folders written in %s; to resume: python3 -m ecm.study %s --out %s %s"
+              % (written, out, a.study, out, where), file=sys.stderr)
+        return 130
     except ConnectionError as e:  # a scheduler address that does not answer: a bad command line
         print("error: %s" % e, file=sys.stderr)
         return 2

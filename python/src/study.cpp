@@ -65,6 +65,7 @@ void bindStudy(py::module_& m) {
         py::dict d;
         d["all_completed"] = r.allCompleted;
         d["ensemble"] = toPython(r.ensemble);
+        d["ensemble_text"] = study::ensembleTable(r.ensemble);  // "" unless an ensemble
         return d;
       },
       py::arg("study"), py::arg("out"), py::arg("threads"));

@@ -92,7 +92,8 @@ def _same_report(dask_out, local_out):
     assert len(_table(dask_out)) >= 8
     for name in ("ensemble.csv", "ensemble_samples.csv"):
         assert (dask_out / name).read_bytes() == (local_out / name).read_bytes(), name
-    for f in ("summary.json", "pareto.png", "ensemble_histogram.png", "weibull.png"):
+    assert not (dask_out / "pareto.png").exists()  # no Pareto front among samples
+    for f in ("summary.json", "ensemble_histogram.png", "weibull.png"):
         assert (dask_out / f).exists(), f
     for r in _table(dask_out):  # every run's outputs, e.g. history.csv, bit for bit
         assert (dask_out / r["directory"] / "history.csv").read_bytes() == \
@@ -138,6 +139,55 @@ def test_a_client_stopped_mid_study_goes_on_without_running_anything_twice(clust
     for n, stamp in before.items():  # not run again, not rewritten
         assert (out / "runs" / n / "study_run.json").stat().st_mtime_ns == stamp
     _same_report(out, local)
+
+
+def test_a_failed_run_is_named_as_it_comes_and_at_the_end_and_the_study_exits_1(cluster, tmp_path):
+    """The elastic bar released at 100 mm/s and at 1e8 mm/s: the second leaves the grid in its
+    first step. Its line says failed with the kind, the closing lines list it, dask.json names it,
+    and the client exits 1 (ecm-study's status for a study with a failed run)."""
+    address, _, _ = cluster
+    study = tmp_path / "one-fails.yaml"
+    study.write_text("# Units: mm, N, MPa, t, s.\nname: one-fails\nscene: %s\nset:\n  end_time: 3.0e-5\n"
+                     "design: grid\nknobs:\n  bodies[0].initial_velocity: [[100, 0], [1.0e8, 0]]\n"
+                     "reference:\n  closed_form: bar_vibration\n  condition: clamp\n" % (SOURCE / "data/mpm/elastic-bar.yaml"))
+    p = subprocess.run([sys.executable, "-m", "ecm.study", str(study), "--scheduler", address, "--out", str(tmp_path / "out")],
+                       capture_output=True, text=True, timeout=300)
+    assert p.returncode == 1, p.stderr
+    assert "] run 2: failed (left_grid: step 1: particle" in p.stderr, p.stderr
+    assert "] run 1: completed" in p.stderr, p.stderr
+    assert "1 of 2 runs did not complete:\n  run 2: failed (step 1: particle" in p.stderr, p.stderr
+    assert "dashboard: http" in p.stderr, p.stderr
+    assert json.loads((tmp_path / "out/dask.json").read_text())["failed_runs"] == ["2"]
+
+
+def test_ctrl_c_stops_the_client_in_one_line_and_the_same_command_resumes(tmp_path):
+    """Ctrl-C at a terminal reaches the whole process group: the client and its local cluster's
+    workers. Sent so (SIGINT to the group) once a first run is written: one line with the count
+    and the command to resume, no traceback, exit 130, no process of the group left; the command
+    run again finishes the study without running the written runs again."""
+    out = tmp_path / "study"
+    command = [sys.executable, "-m", "ecm.study", str(STUDY), "--out", str(out), "--workers", "1"]
+    p = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True,
+                         env=dict(os.environ, OMP_NUM_THREADS="1"))
+    _wait_for(lambda: len(_written(out)) >= 1 or p.poll() is not None, 300, "a first run written")
+    os.killpg(p.pid, signal.SIGINT)
+    _, err = p.communicate(timeout=120)
+    assert p.returncode == 130, err
+    assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
+    lines = [l for l in err.splitlines() if l.startswith("stopped:")]
+    assert len(lines) == 1 and "to resume: python3 -m ecm.study" in lines[0], err
+    written = len(_written(out))
+
+    def group_gone():
+        try:
+            os.killpg(p.pid, 0)
+            return False
+        except ProcessLookupError:
+            return True
+    _wait_for(group_gone, 60, "the local cluster's processes to end")
+    again = subprocess.run(command, capture_output=True, text=True, timeout=600, env=dict(os.environ, OMP_NUM_THREADS="1"))
+    assert again.returncode == 0, again.stderr
+    assert json.loads((out / "dask.json").read_text())["already_done"] == written
 
 
 def test_a_worker_killed_mid_study_costs_a_retry_not_a_result(cluster, local, tmp_path):
