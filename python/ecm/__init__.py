@@ -22,15 +22,15 @@ from dataclasses import dataclass as _dataclass, field as _field
 import numpy as _np
 
 from ._ecm import (STATUS, BandState, CalibrationError, CheckpointError, InputError, Material, OutputError,
-                   ParameterError, PointArray, PointState, UpdateResult, __version__, fracture_energy,
-                   softening_modulus)
+                   ParameterError, PointArray, PointState, UpdateResult, __version__)
 from . import _ecm
+from .material import UpdateFailed, fracture_energy, softening_modulus  # noqa: E402 (also wraps Material.update)
 from .mpm_output import MpmOutput, read_mpm_output
 from . import failures
 from .failures import *  # noqa: F401,F403 (RunFailed and one class per failure kind)
 
 __all__ = ["STATUS", "BandState", "CalibrationError", "CheckpointError", "InputError", "Material", "OutputError",
-           "ParameterError", "PointArray", "PointState", "UpdateResult", "__version__", "fracture_energy",
+           "ParameterError", "PointArray", "PointState", "UpdateResult", "UpdateFailed", "__version__", "fracture_energy",
            "softening_modulus", "PointRun", "run_point", "run_point_3d", "snapback_study", "calibrate", "fit_softening",
            "run_scene", "load_scene", "MpmOutput", "read_mpm_output"] + failures.__all__
 

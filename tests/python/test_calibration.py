@@ -23,10 +23,27 @@ def test_calibrate_gives_the_command_line_summary_bit_for_bit(tmp_path):
 
 
 def test_softening_modulus_and_fracture_energy_are_inverse():
-    ep = ecm.softening_modulus(E=32000, ft=3.0, n=0.128, GF=0.11, h=0.05)
+    ep = ecm.softening_modulus(youngs_modulus=32000, tensile_strength=3.0, softening_exponent=0.128,
+                               fracture_energy=0.11, band_width=0.05)
     # the paper's concrete: E_p = 8.184 MPa, which gives G_F = 0.11 N/mm to the paper's rounding (0.03 %)
     assert ep == pytest.approx(8.184, rel=1e-3)
-    assert ecm.fracture_energy(E=32000, ft=3.0, Ep=ep, n=0.128, h=0.05) == pytest.approx(0.11, rel=1e-9)
+    assert ecm.fracture_energy(youngs_modulus=32000, tensile_strength=3.0, softening_modulus=ep, softening_exponent=0.128,
+                               band_width=0.05) == pytest.approx(0.11, rel=1e-9)
+
+
+def test_the_identities_take_the_material_files_keys_and_the_old_names_warn():
+    """One vocabulary: the keys of a material file and of calibrate(). The former short names
+    give the same number with a DeprecationWarning naming the new key; a wrong or missing
+    keyword is a TypeError in the module's words."""
+    new = ecm.softening_modulus(youngs_modulus=32000, tensile_strength=3.0, softening_exponent=0.128,
+                                fracture_energy=0.11, band_width=0.05)
+    with pytest.warns(DeprecationWarning, match="now youngs_modulus"):
+        old = ecm.softening_modulus(E=32000, ft=3.0, n=0.128, GF=0.11, h=0.05)
+    assert old == new
+    with pytest.raises(TypeError, match="needs band_width"):
+        ecm.softening_modulus(youngs_modulus=32000, tensile_strength=3.0, softening_exponent=0.128, fracture_energy=0.11)
+    with pytest.raises(TypeError, match="not colour"):
+        ecm.fracture_energy(colour="red")
 
 
 def test_a_curve_drawn_from_the_law_fits_back_to_its_parameters(tmp_path):

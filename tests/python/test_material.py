@@ -218,9 +218,43 @@ def test_the_snap_back_default_is_the_scenes_release():
         r = m.update(by_default, [1e-6, 0.0, 0.0], 500.0)
         assert r.converged
         released = released or r.released
-        s = m.update(stopping, [1e-6, 0.0, 0.0], 500.0, snap_back="stop")
+        s = m.update(stopping, [1e-6, 0.0, 0.0], 500.0, snap_back="stop", check=False)
         if not s.converged:
             stopped = s.status == "snap-back"
             break
     assert released
     assert stopped
+
+
+def test_a_failed_update_raises_with_its_status_unless_asked_for_the_status():
+    """The snap-back of test_the_snap_back_default_is_the_scenes_release under snap_back="stop":
+    by default ecm.UpdateFailed (a RuntimeError) with .status "snap-back" and the result, the
+    state unchanged; check=False returns that result. update_many names its failed points."""
+    m = ecm.Material(**CONCRETE)
+    p = ecm.PointState()
+    with pytest.raises(ecm.UpdateFailed) as caught:
+        for _ in range(200):
+            m.update(p, [1e-6, 0.0, 0.0], 500.0, snap_back="stop")
+    assert caught.value.status == "snap-back" and not caught.value.result.converged
+    before = p.strain.copy()
+    r = m.update(p, [1e-6, 0.0, 0.0], 500.0, snap_back="stop", check=False)
+    assert r.status == "snap-back" and np.array_equal(p.strain, before)
+    points = ecm.PointArray(2)
+    steps = np.array([[1e-6, 0.0, 0.0], [1e-7, 0.0, 0.0]])
+    with pytest.raises(ecm.UpdateFailed, match="1 of 2 updates did not converge .first: point 0, snap-back."):
+        for _ in range(200):
+            m.update_many(points, steps, 500.0, snap_back="stop")
+
+
+def test_a_strain_increment_of_the_wrong_shape_is_a_type_error_in_the_modules_words():
+    m = ecm.Material(**CONCRETE)
+    for wrong in ([1e-6, 0.0], [[1e-6, 0.0, 0.0]], "eps"):
+        with pytest.raises(TypeError, match="strain_increment must be three numbers .eps_xx, eps_yy, gamma_xy."):
+            m.update(ecm.PointState(), wrong, 10.0)
+
+
+def test_help_on_material_lists_its_keys_with_units():
+    doc = ecm.Material.__doc__
+    for key, unit in (("youngs_modulus", "MPa"), ("band_width", "mm"), ("density", "t/mm^3"), ("fracture_energy", "N/mm")):
+        line = next(l for l in doc.splitlines() if l.strip().startswith(key))
+        assert unit in line, line
