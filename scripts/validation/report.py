@@ -3,7 +3,9 @@
 (RUN/compare.json, scripts/validation/compare.py) and the run's own figures (RUN/summary.json), as
 markdown tables on stdout and OUT/summary.json, the rows of docs/validation.md it generates in
 OUT/docs-rows.md (DOC_ROWS below); OUT/den.png and OUT/lpanel.png overlay the runs on
-the tests' curves (gnuplot). Usage: report.py OUT_DIR. Units: mm, N, s."""
+the tests' curves (gnuplot; the scripts beside them, .gp), each run's legend saying what it
+measures and a run that did not complete crossed where it stopped; each target's verdict is
+printed after its table and kept in OUT/summary.json ("targets"). Usage: report.py OUT_DIR. Units: mm, N, s."""
 import json
 import os
 import subprocess
@@ -26,6 +28,43 @@ def fmt(v, f="{:.3g}"):
     return "-" if v is None else f.format(v)
 
 
+# The targets of docs/validation.md, judged per run: (name, the figure, met?) from its comparison.
+def den_verdicts(c):
+    out = [("peak within 10 % of the test's", f"{c['peak_ratio'] - 1:+.1%}", abs(c["peak_ratio"] - 1) <= 0.10)]
+    d = c.get("post_peak_distance")
+    full = c.get("compared_up_to_mm", 0) >= 0.0985
+    out.append(("post-peak within 15 % of the test's peak to delta = 0.1 mm",
+                ("-" if d is None else f"{d:.0%}") + ("" if full else f" (compared to {c['compared_up_to_mm']:.3f} mm only)"),
+                d is not None and d <= 0.15 and full))
+    return out
+
+
+def lpanel_verdicts(c):
+    peak_in = 6700 <= c["peak_N"] <= 7600 and 0.15 <= c["u_at_peak_mm"] <= 0.25
+    share = c.get("inside_envelope_share")
+    full = c.get("compared_up_to_mm", 0) >= 0.985
+    return [("peak inside 6.7-7.6 kN at u = 0.15-0.25 mm", f"{c['peak_N'] / 1000:.2f} kN at {c['u_at_peak_mm']:.3f} mm", peak_in),
+            ("inside the envelope over 80 % of 0-1 mm",
+             ("-" if share is None else f"{share:.0%}") + ("" if full else f" (of 0-{c['compared_up_to_mm']:.2f} mm only)"),
+             share is not None and share >= 0.80 and full)]
+
+
+def mesh_verdict(label, peaks):
+    """The same peak within 3 % over the meshes that ran (coarse, medium, fine)."""
+    if len(peaks) < 2:
+        return None
+    spread = (max(peaks.values()) - min(peaks.values())) / max(peaks.values())
+    figure = ", ".join(f"{m} {v / 1000:.2f}" for m, v in peaks.items()) + f" kN: {spread:.1%}"
+    return (f"{label}: the same peak within 3 % over the meshes", figure, spread <= 0.03 and len(peaks) == 3)
+
+
+def print_verdicts(rows):
+    for run, verdicts in rows:
+        for name, figure, met in verdicts:
+            print(f"- {run}: {name}: **{'met' if met else 'not met'}** ({figure})")
+    print()
+
+
 den = [r for r in runs if r.startswith("den-")]
 if den:
     print("| DEN 4b run | status | peak P (kN) | / test | delta at peak (mm) | post-peak distance | work to 0.1 mm (N mm) | slope (kN/um) | dissipated (N mm) | wall (s) |")
@@ -37,6 +76,11 @@ if den:
         print(f"| {r} ({c['delta_measured_by']}) | {c['status']} | {c['peak_N'] / 1000:.2f} | {c['peak_ratio']:.3f} | {c['delta_at_peak_mm']:.4f} | "
               f"{fmt(c['post_peak_distance'])} | {c['work_N_mm']:.0f} (to {c['compared_up_to_mm']:.3f}) | {fmt(c['initial_slope_kN_per_um'])} | {fmt(c['dissipated_N_mm'], '{:.0f}')} | {fmt(c['wall_time_s'], '{:.0f}')} |")
     print()
+    print("DEN 4b targets (docs/validation.md):")
+    rows = [(r, den_verdicts(report[r])) for r in den]
+    for r, v in rows:
+        report[r]["targets"] = [{"target": n, "figure": f, "met": m} for n, f, m in v]
+    print_verdicts(rows)
 lp = [r for r in runs if r.startswith("lpanel-")]
 if lp:
     print("| L-panel run | status | peak F (kN) | u at peak (mm) | inside envelope | post-peak distance (series A) | work to 1 mm (N mm) | slope (kN/mm) | dissipated (N mm) | wall (s) |")
@@ -47,6 +91,22 @@ if lp:
         c = report[r]
         print(f"| {r} | {c['status']} | {c['peak_N'] / 1000:.2f} | {c['u_at_peak_mm']:.3f} | {fmt(c['inside_envelope_share'], '{:.0%}')} | "
               f"{fmt(c['post_peak_distance_to_series_a'])} | {c['work_N_mm']:.0f} (to {c['compared_up_to_mm']:.2f}) | {fmt(c['initial_slope_kN_per_mm'])} | {fmt(c['dissipated_N_mm'], '{:.0f}')} | {fmt(c['wall_time_s'], '{:.0f}')} |")
+    print()
+    print("L-panel targets (docs/validation.md):")
+    rows = [(r, lpanel_verdicts(report[r])) for r in lp]
+    for r, v in rows:
+        report[r]["targets"] = [{"target": n, "figure": f, "met": m} for n, f, m in v]
+    print_verdicts(rows)
+    # Over the meshes: the runs that differ only by their mesh (lpanel-MESH[-variant]).
+    families = {}
+    for r in lp:
+        parts = r.split("-")
+        if len(parts) >= 2 and parts[1] in ("coarse", "medium", "fine") and report[r]["status"] == "completed":
+            families.setdefault("-".join(parts[2:]) or "one band, explicit", {})[parts[1]] = report[r]["peak_N"]
+    mesh_rows = [v for v in (mesh_verdict("lpanel " + k, peaks) for k, peaks in families.items()) if v]
+    if mesh_rows:
+        print_verdicts([("meshes", mesh_rows)])
+json.dump(report, open(os.path.join(out, "summary.json"), "w"), indent=1)
 
 
 # The rows of docs/validation.md that this report generates, in the docs' own columns: OUT/docs-rows.md
@@ -128,27 +188,76 @@ with open(os.path.join(out, "docs-rows.md"), "w") as f:
         f.write("| " + " | ".join(cells) + " |\n")
 
 
-def plot(name, test_cmd, runs_, xcol, ycol, xlabel, ylabel, xmax):
+def y_range(runs_, xcol, ycol, xmax, test_values):
+    """[low:high] in kN fitted to what the plot shows: the runs' rows with 0 <= x <= xmax and the
+    tests' values, with 0 always in it and a margin of 8 %."""
+    ys = list(test_values)
+    for r in runs_:
+        with open(f"{out}/{r}/compare.csv") as f:
+            next(f)
+            for line in f:
+                cells = line.strip().split(",")
+                try:
+                    x, y = float(cells[xcol - 1]), float(cells[ycol - 1]) / 1000
+                except (ValueError, IndexError):
+                    continue
+                if 0 <= x <= xmax:
+                    ys.append(y)
+    low, high = min(ys + [0.0]), max(ys + [0.0])
+    pad = 0.08 * (high - low or 1.0)
+    return f"[{low - pad if low < 0 else 0}:{high + pad}]"
+
+
+def last_row(r, xcol, ycol):
+    with open(f"{out}/{r}/compare.csv") as f:
+        rows = [l.strip().split(",") for l in f][1:]
+    return float(rows[-1][xcol - 1]), float(rows[-1][ycol - 1]) / 1000
+
+
+def plot(name, test_cmd, runs_, xcol, ycol, xlabel, ylabel, xmax, measures, test_values):
+    """The tests (black and gray) and one coloured curve per run, its legend naming what it
+    measures; a run that did not complete ends in a cross where it stopped. The key sits below
+    the axes, where it hides no curve."""
     if not runs_:
         return
-    lines = [f"set terminal pngcairo size 1000,650", f"set output '{out}/{name}.png'", "set datafile separator ','",
-             f"set xlabel '{xlabel}'", f"set ylabel '{ylabel}'", f"set xrange [0:{xmax}]", "set key top right", "set grid"]
+    lines = ["set terminal pngcairo size 1000,760", f"set output '{out}/{name}.png'", "set datafile separator ','",
+             f"set xlabel '{xlabel}'", f"set ylabel '{ylabel}'", f"set xrange [0:{xmax}]",
+             f"set yrange {y_range(runs_, xcol, ycol, xmax, test_values)}", "set key below noenhanced",
+             "set grid"]
     colours = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2", "#17becf", "#bcbd22",
                "#7f7fff", "#ff7fbf", "#7fbf7f"]  # no black or gray: those are the tests'
-    series = test_cmd + [f"'{out}/{r}/compare.csv' every ::1 using {xcol}:(${ycol}/1000) with lines lw 2 lc rgb '{colours[i % len(colours)]}' title '{r}'"
-                         for i, r in enumerate(runs_)]
+    series = list(test_cmd)
+    for i, r in enumerate(runs_):
+        colour = colours[i % len(colours)]
+        title = f"{r} ({measures(r)})"
+        status = report[r]["status"]
+        if status != "completed":
+            title += f", {status} at {last_row(r, xcol, ycol)[0]:.3f} mm"
+        series.append(f"'{out}/{r}/compare.csv' every ::1 using {xcol}:(${ycol}/1000) with lines lw 2 lc rgb '{colour}' title \"{title}\"")
+        if status != "completed":
+            x, y = last_row(r, xcol, ycol)
+            series.append(f"'+' using ({x}):({y}) every ::0::0 with points pt 2 ps 3 lw 3 lc rgb '{colour}' notitle")
     lines.append("plot " + ", \\\n     ".join(series))
-    subprocess.run(["gnuplot"], input="\n".join(lines) + "\n", text=True, check=False)
+    script = "\n".join(lines) + "\n"
+    with open(f"{out}/{name}.gp", "w") as f:  # beside the PNG, to tweak and rerun by hand
+        f.write(script)
+    subprocess.run(["gnuplot"], input=script, text=True, check=False)
 
 
 # The DEN's test curve as CSV (the file is whitespace-separated).
+test_4b = []
 with open(os.path.join(out, "test-4b.csv"), "w") as f:
     for line in open("data/experiments/nooru-mohamed-4b.txt"):
         if line.strip() and not line.startswith("#"):
             f.write(",".join(line.split()) + "\n")
-plot("den", [f"'{out}/test-4b.csv' using 1:($2/1000) with linespoints lw 3 lc rgb 'black' pt 7 title 'test (Nooru-Mohamed 4b)'"],
-     den, 1, 2, "delta (mm)", "P (kN)", 0.1)
+            test_4b.append(float(line.split()[1]) / 1000)
+DELTA = {"gauges": "delta: the gauges, as the test", "platen": "delta: the frame's travel", "top": "delta: the top edge"}
+plot("den", [f"'{out}/test-4b.csv' using 1:($2/1000) with linespoints lw 3 lc rgb 'black' pt 7 title 'test (Nooru-Mohamed 4b; delta: gauges)'"],
+     den, 1, 2, "delta (mm)", "P (kN)", 0.1, lambda r: DELTA.get(report[r]["delta_measured_by"], report[r]["delta_measured_by"]),
+     test_4b)
+envelope = [float(v) for line in open("data/experiments/winkler-lpanel-envelope.csv")
+            if line.strip() and not line.startswith("#") and line[0].isdigit() for v in line.split(",")[1:3]]
 plot("lpanel", ["'data/experiments/winkler-lpanel-envelope.csv' every ::1 using 1:2 with lines lw 3 lc rgb 'gray' title 'test envelope (lower)'",
                 "'data/experiments/winkler-lpanel-envelope.csv' every ::1 using 1:3 with lines lw 3 lc rgb 'gray' title 'test envelope (upper)'",
                 "'data/experiments/winkler-lpanel-series-a.csv' using 1:($2/1000) with lines lw 2 lc rgb 'black' title 'test series A'"],
-     lp, 1, 2, "load-point displacement u (mm)", "F (kN)", 1.0)
+     lp, 1, 2, "load-point displacement u (mm)", "F (kN)", 1.0, lambda r: "F, u: the load platen's", envelope)
