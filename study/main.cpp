@@ -57,6 +57,7 @@ int main(int argc, char** argv) {
     const ecm::study::StudyResult r = ecm::study::runStudy(study, plan, options);
     std::fprintf(stderr, "%zu runs -> %s (study.csv, summary.json, %s)\n", r.runs.size(), options.outputDir.string().c_str(),
                  r.ensemble.is_null() ? "pareto.png" : "ensemble.csv, ensemble_histogram.png, weibull.png");
+    std::fputs(ecm::study::notCompletedList(r).c_str(), stderr);
     return r.allCompleted ? ecm::io::kExitDone : ecm::io::kExitRunFailed;
   } catch (const ecm::io::InputError& e) {
     ecm::io::printError("ecm-study", e.what());

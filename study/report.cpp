@@ -209,4 +209,18 @@ nlohmann::json summaryJson(const Study& study, const StudyResult& result, const 
 
 }  // namespace detail
 
+std::string notCompletedList(const StudyResult& result) {
+  std::string list;
+  std::size_t count = 0;
+  for (const RunRecord& r : result.runs) {
+    if (r.status == "completed") continue;
+    ++count;
+    list.append("  run ").append(std::to_string(r.id)).append(r.reference ? " (reference)" : "").append(": ").append(r.status);
+    if (!r.message.empty()) list.append(" (").append(r.message).append(")");
+    list.append("\n");
+  }
+  if (count == 0) return "";
+  return std::to_string(count) + " of " + std::to_string(result.runs.size()) + " runs did not complete:\n" + list;
+}
+
 }  // namespace ecm::study

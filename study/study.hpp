@@ -242,6 +242,10 @@ WeibullFit fitWeibull(const std::vector<double>& x, double confidence = 0.95);
 // and the Weibull modulus and scale with theirs. Empty for a null ensemble.
 std::string ensembleTable(const nlohmann::json& ensemble);
 
+// The runs that did not complete, one line each with their status and message, after a line
+// that counts them; "" when every run completed. The tool prints it last, before it exits 1.
+std::string notCompletedList(const StudyResult& result);
+
 // --- closed forms and measures (exposed for tests) ---
 
 // Fixed-free bar released with v0: the clamp reaction is a square wave of period 4 L / c and

@@ -5,7 +5,7 @@ Units everywhere: mm, N, MPa, tonne, s (density in t/mm^3).
     import ecm
     concrete = ecm.Material.from_file("data/materials/den-concrete.yaml")
     point = ecm.PointState()
-    result = concrete.update(point, [1e-4, 0, 0], H=10.0)      # point is updated in place
+    result = concrete.update(point, [1e-4, 0, 0], effective_size=10.0)  # point updated in place
     run = ecm.run_point("data/point/uniaxial-tension-H10.yaml")  # run.history["sig_xx"], run.summary
     ecm.calibrate(youngs_modulus=32000, tensile_strength=3, fracture_energy=0.11,
                   band_width=0.05, softening_exponent=0.128)["Ep"]

@@ -5,8 +5,9 @@
   instead, for callers that read `.status` themselves. `update_many` likewise, naming the points.
 - A strain increment that is not three numbers is a TypeError that says what is expected.
 - `softening_modulus` and `fracture_energy` take the keys of a material file (youngs_modulus,
-  tensile_strength, ...), as `Material(...)` and `calibrate(...)` do; the former short names
-  (E, ft, n, GF, h, Ep) still work for now, with a DeprecationWarning.
+  tensile_strength, ...), as `Material(...)` and `calibrate(...)` do, and `update` the scenes'
+  `effective_size`; the former short names (E, ft, n, GF, h, Ep; H) still work for now, with a
+  DeprecationWarning.
 
 Units: mm, N, MPa (strains dimensionless, engineering shear)."""
 import warnings as _warnings
@@ -59,27 +60,45 @@ _compiled_update = _ecm.Material.update
 _compiled_update_many = _ecm.Material.update_many
 
 
-def _update(self, state, strain_increment, H, tangent=True, snap_back="release", substep_levels=0, check=True):
+def _effective_size(function, effective_size, H):
+    """The effective size from effective_size= (the scenes' key) or the former H= (deprecated)."""
+    if H is not None:
+        if effective_size is not None:
+            raise TypeError("%s() takes effective_size, not both it and H" % function)
+        _warnings.warn("%s(H=...): the keyword is now effective_size, the scenes' key" % function, DeprecationWarning,
+                       stacklevel=3)
+        return H
+    if effective_size is None:
+        raise TypeError("%s() needs effective_size, the effective size H (mm)" % function)
+    return effective_size
+
+
+def _update(self, state, strain_increment, effective_size=None, tangent=True, snap_back="release", substep_levels=0,
+            check=True, H=None):
     """Updates `state` (a PointState) in place by the strain increment (eps_xx, eps_yy, gamma_xy)
-    in the effective size H (mm); the state is committed only if the update converged. Returns an
+    in the effective size H (`effective_size`, mm; the third argument); the state is committed
+    only if the update converged. Returns an
     UpdateResult (stress in MPa, tangent, dissipation per unit volume in MPa, status, ...).
     snap_back: release (default) | stop; substep_levels: sub-steps 2 .. 2^levels of an update that
     does not converge. Raises ecm.UpdateFailed (with .status) if it did not converge, unless
     check=False, which returns the result to read .status from."""
-    result = _compiled_update(self, state, _increment(strain_increment), H, tangent, snap_back, substep_levels)
+    size = _effective_size("update", effective_size, H)
+    result = _compiled_update(self, state, _increment(strain_increment), size, tangent, snap_back, substep_levels)
     if check and not result.converged:
         raise UpdateFailed("the update did not converge: %s (the state is unchanged; check=False returns the result)"
                            % result.status, result.status, result)
     return result
 
 
-def _update_many(self, points, strain_increments, H, tangent=False, snap_back="release", substep_levels=0, check=True):
+def _update_many(self, points, strain_increments, effective_size=None, tangent=False, snap_back="release",
+                 substep_levels=0, check=True, H=None):
     """update() of every point of a PointArray (in place) with the rows of an (N, 3) array of
-    strain increments; H (mm) a number or one per point. Returns a dict of arrays: stress (N, 3),
+    strain increments; effective_size H (mm) a number or one per point. Returns a dict of arrays: stress (N, 3),
     dissipation (N,), status (N,) (an index into ecm.STATUS), and tangent (N, 3, 3) if asked. The
     GIL is released while it runs. If any point did not converge (its state unchanged, the others
     updated), raises ecm.UpdateFailed naming them, with the dict as .result, unless check=False."""
-    out = _compiled_update_many(self, points, strain_increments, H, tangent, snap_back, substep_levels)
+    size = _effective_size("update_many", effective_size, H)
+    out = _compiled_update_many(self, points, strain_increments, size, tangent, snap_back, substep_levels)
     failed = _np.flatnonzero(out["status"] != 0)
     if check and failed.size:
         first = _ecm.STATUS[int(out["status"][failed[0]])]

@@ -258,3 +258,14 @@ def test_help_on_material_lists_its_keys_with_units():
     for key, unit in (("youngs_modulus", "MPa"), ("band_width", "mm"), ("density", "t/mm^3"), ("fracture_energy", "N/mm")):
         line = next(l for l in doc.splitlines() if l.strip().startswith(key))
         assert unit in line, line
+
+
+def test_update_takes_the_scenes_effective_size_key_and_the_former_h_warns():
+    m = ecm.Material(**CONCRETE)
+    a, b = ecm.PointState(), ecm.PointState()
+    r = m.update(a, [1e-6, 0.0, 0.0], effective_size=10.0)
+    with pytest.warns(DeprecationWarning, match="now effective_size"):
+        s = m.update(b, [1e-6, 0.0, 0.0], H=10.0)
+    assert np.array_equal(r.stress, s.stress)
+    with pytest.raises(TypeError, match="needs effective_size"):
+        m.update(ecm.PointState(), [1e-6, 0.0, 0.0])

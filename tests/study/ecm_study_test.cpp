@@ -60,6 +60,9 @@ TEST(EcmStudy, FailedRunsExitOneWithTheTable) {
   const ToolRun r = study(shellQuoted(file) + " -q --out " + shellQuoted(tmp.path() / "out"), tmp);
   EXPECT_EQ(r.status, ecm::io::kExitRunFailed) << r.err;
   expectContains(r.out, "failed");
+  // The closing lines name every run that did not complete, after the count.
+  expectContains(r.err, "2 of 2 runs did not complete:\n  run 1: failed (");
+  expectContains(r.err, "  run 2 (reference): failed (");
   EXPECT_TRUE(fs::exists(tmp.path() / "out" / "study.csv"));
 }
 
