@@ -21,7 +21,6 @@ for r in runs:
     c["wall_time_s"] = s.get("wall_time_s")
     c["dissipated_N_mm"] = s.get("energies_Nmm", {}).get("dissipated")
     report[r] = c
-json.dump(report, open(os.path.join(out, "summary.json"), "w"), indent=1)
 
 
 def fmt(v, f="{:.3g}"):
@@ -58,6 +57,15 @@ def mesh_verdict(label, peaks):
     return (f"{label}: the same peak within 3 % over the meshes", figure, spread <= 0.03 and len(peaks) == 3)
 
 
+def judge(title, runs_, verdicts):
+    """Each run's verdicts: printed under `title` and kept in the report (summary.json's targets)."""
+    print(title)
+    rows = [(r, verdicts(report[r])) for r in runs_]
+    for r, v in rows:
+        report[r]["targets"] = [{"target": n, "figure": f, "met": m} for n, f, m in v]
+    print_verdicts(rows)
+
+
 def print_verdicts(rows):
     for run, verdicts in rows:
         for name, figure, met in verdicts:
@@ -76,11 +84,7 @@ if den:
         print(f"| {r} ({c['delta_measured_by']}) | {c['status']} | {c['peak_N'] / 1000:.2f} | {c['peak_ratio']:.3f} | {c['delta_at_peak_mm']:.4f} | "
               f"{fmt(c['post_peak_distance'])} | {c['work_N_mm']:.0f} (to {c['compared_up_to_mm']:.3f}) | {fmt(c['initial_slope_kN_per_um'])} | {fmt(c['dissipated_N_mm'], '{:.0f}')} | {fmt(c['wall_time_s'], '{:.0f}')} |")
     print()
-    print("DEN 4b targets (docs/validation.md):")
-    rows = [(r, den_verdicts(report[r])) for r in den]
-    for r, v in rows:
-        report[r]["targets"] = [{"target": n, "figure": f, "met": m} for n, f, m in v]
-    print_verdicts(rows)
+    judge("DEN 4b targets (docs/validation.md):", den, den_verdicts)
 lp = [r for r in runs if r.startswith("lpanel-")]
 if lp:
     print("| L-panel run | status | peak F (kN) | u at peak (mm) | inside envelope | post-peak distance (series A) | work to 1 mm (N mm) | slope (kN/mm) | dissipated (N mm) | wall (s) |")
@@ -92,11 +96,7 @@ if lp:
         print(f"| {r} | {c['status']} | {c['peak_N'] / 1000:.2f} | {c['u_at_peak_mm']:.3f} | {fmt(c['inside_envelope_share'], '{:.0%}')} | "
               f"{fmt(c['post_peak_distance_to_series_a'])} | {c['work_N_mm']:.0f} (to {c['compared_up_to_mm']:.2f}) | {fmt(c['initial_slope_kN_per_mm'])} | {fmt(c['dissipated_N_mm'], '{:.0f}')} | {fmt(c['wall_time_s'], '{:.0f}')} |")
     print()
-    print("L-panel targets (docs/validation.md):")
-    rows = [(r, lpanel_verdicts(report[r])) for r in lp]
-    for r, v in rows:
-        report[r]["targets"] = [{"target": n, "figure": f, "met": m} for n, f, m in v]
-    print_verdicts(rows)
+    judge("L-panel targets (docs/validation.md):", lp, lpanel_verdicts)
     # Over the meshes: the runs that differ only by their mesh (lpanel-MESH[-variant]).
     families = {}
     for r in lp:
@@ -106,7 +106,7 @@ if lp:
     mesh_rows = [v for v in (mesh_verdict("lpanel " + k, peaks) for k, peaks in families.items()) if v]
     if mesh_rows:
         print_verdicts([("meshes", mesh_rows)])
-json.dump(report, open(os.path.join(out, "summary.json"), "w"), indent=1)
+json.dump(report, open(os.path.join(out, "summary.json"), "w"), indent=1)  # once, with the targets
 
 
 # The rows of docs/validation.md that this report generates, in the docs' own columns: OUT/docs-rows.md
