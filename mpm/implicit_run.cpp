@@ -57,6 +57,7 @@ class ImplicitStepper final : public Stepper {
     book_.factorizations += last_.factorizations;
     book_.krylovIterations += last_.krylovIterations;
     book_.relaxed += last_.relaxed;
+    book_.stabilized += last_.proximalSteps > 0 ? 1 : 0;
     book_.mostIterations = std::max(book_.mostIterations, static_cast<long>(last_.totalIterations));
     book_.linearSolveSeconds += last_.linearSolveSeconds;
   }
@@ -65,7 +66,7 @@ class ImplicitStepper final : public Stepper {
   std::vector<std::string> historyColumns() const override {
     std::vector<std::string> columns = mpm::historyColumns(scene_);
     for (const char* c : {"load_factor", "newton_iterations", "halvings", "snapback_releases", "load_step", "onset_overshoot",
-                          "internal_work_Nmm", "work_dissipated_Nmm", "relaxed"})
+                          "internal_work_Nmm", "work_dissipated_Nmm", "relaxed", "proximal_steps"})
       columns.emplace_back(c);
     return columns;
   }
@@ -76,10 +77,10 @@ class ImplicitStepper final : public Stepper {
     for (const ConditionState& c : solver_.conditions()) v.insert(v.end(), {c.displacement[0], c.displacement[1], c.reaction[0], c.reaction[1]});
     for (const Vec2& f : appliedLoads()) v.insert(v.end(), {f[0], f[1]});
     const Energies e = solver_.energies();
-    v.insert(v.end(), {0.0, e.strain, e.externalWork, e.dissipated, 0.0, static_cast<double>(cracked()), solver_.loadFactor(),
+    v.insert(v.end(), {0.0, e.strain, e.externalWork, e.dissipated, e.damping, static_cast<double>(cracked()), solver_.loadFactor(),
                        static_cast<double>(r.totalIterations), static_cast<double>(r.cuts), static_cast<double>(r.released),
                        r.size, r.onsetOvershoot, solver_.internalWork(), solver_.internalWork() - e.strain,
-                       static_cast<double>(r.relaxed)});
+                       static_cast<double>(r.relaxed), static_cast<double>(r.proximalSteps)});
     return v;
   }
   // At the first row, and where the progress passes the next multiple of the spacing.
@@ -122,6 +123,8 @@ class ImplicitStepper final : public Stepper {
                   {"setup_s", amg->setupSeconds},        {"solve_s", amg->solveSeconds}};
     j["snap_back_releases"] = book_.released;
     j["relaxed_steps"] = book_.relaxed;  // kept with a residual between tolerance and accept_tolerance
+    // Load steps solved by proximal steps, and their dashpots' work (docs/implicit.md, "Stabilised steps")
+    j["stabilized_steps"] = book_.stabilized;
     j["cracked_particles"] = cracked();
     const Energies e = solver_.energies();
     // Two dissipations (docs/implicit.md, "Energies"): the model's f int Y dD, and the internal
@@ -130,7 +133,8 @@ class ImplicitStepper final : public Stepper {
                          {"external_work", e.externalWork},
                          {"internal_work", solver_.internalWork()},
                          {"dissipated", e.dissipated},
-                         {"work_dissipated", solver_.internalWork() - e.strain}};
+                         {"work_dissipated", solver_.internalWork() - e.strain},
+                         {"dashpots", e.damping}};
     j["energy_balance"] = std::abs(e.externalWork - solver_.internalWork()) / std::max(std::abs(e.externalWork), 1e-300);
     j["threads"] = solver_.setup().threads;
     return j;

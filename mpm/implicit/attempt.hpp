@@ -27,6 +27,8 @@ struct ImplicitStepReport {
   double residual = 0.0;    // relative, at convergence
   long released = 0;        // snap-backs released at the material level in the step
   int relaxed = 0;          // 1: kept with a residual between tolerance and acceptTolerance
+  int proximalSteps = 0;    // stabilised steps: the solves with dashpots (docs/implicit.md, "Stabilised steps")
+  double dashpotWork = 0.0; // the energy their dashpots took: W_ext - d(strain energy) - d(dissipated) (N mm)
   double linearSolveSeconds = 0.0;
   long krylovIterations = 0;  // GMRES vectors on the kept factorisation (ImplicitSettings::krylovIterations)
 };
@@ -67,6 +69,10 @@ struct Attempt {
   int maxIterations = 25;                // ImplicitSettings::maxIterations, 4 times that at the last halving
   bool lastResort = false;               // the last halving: no early stall test, its whole maxIterations
   bool stalled = false;                  // Newton ran out of iterations; du and trial hold its last iterate
+  // A stabilised attempt (docs/implicit.md, "Stabilised steps"): the dashpots' alpha, and the
+  // increments Newton starts from instead of the predictor (displacement control; nullptr: none).
+  Dashpots dashpots;
+  const Eigen::VectorXd* warmStart = nullptr;
   // The last halving under release keeps each point's release for the rest of the attempt
   // (docs/implicit.md, "Releases kept within a step").
   bool keepReleases = false;

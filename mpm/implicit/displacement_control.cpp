@@ -17,7 +17,7 @@ Eigen::VectorXd DisplacementControl::residualOf(const Trial& t, double& relative
 
 void DisplacementControl::evaluate(const Eigen::VectorXd& du, Trial& t, const CycleGuard* cycle) const {
   evaluateTrial(context_.setup, context_.particles, context_.geometry, du, false, a_.snapBack, t, nullptr,
-                cycle ? cycle->secantFlags() : nullptr, a_.keptStarts());
+                cycle ? cycle->secantFlags() : nullptr, a_.keptStarts(), a_.dashpots);
 }
 
 // The predictor: linearised at the step's start (du = 0), loaded by the prescribed increments
@@ -30,12 +30,18 @@ bool DisplacementControl::start() {
   const DofMap& dofs = c.geometry.dofs;
   const UnknownReduction* reduction = a.unknownReduction();
   const int n = reduction ? reduction->reduced() : dofs.unknowns();
-  if (n > 0) {
+  if (n > 0 || a.warmStart) {
     const Eigen::VectorXd prescribedIncrements = a.du;
     Trial start;
-    evaluateTrial(c.setup, c.particles, c.geometry, Eigen::VectorXd::Zero(a.du.size()), false, a.snapBack, start, &prescribedIncrements);
+    evaluateTrial(c.setup, c.particles, c.geometry, Eigen::VectorXd::Zero(a.du.size()), false, a.snapBack, start, &prescribedIncrements, nullptr,
+                  nullptr, a.dashpots);
     if (start.failed != SIZE_MAX) return a.failInMaterial(0, start, c.setup, c.particles);
     a.startForce = start.internalForce;
+    if (a.warmStart) {  // a stabilised step's next alpha starts from the last one's solution
+      a.du = *a.warmStart;
+      evaluate(a.du, a.trial, nullptr);
+      return true;
+    }
     const Eigen::VectorXd rhs = onUnknowns(dofs, reduction, [&](std::int32_t k) {
       return a.external[k] - start.internalForce[k] - start.tangentTimesDirection[k];
     });

@@ -26,6 +26,7 @@ void writeImplicitCheckpoint(const std::filesystem::path& path, const ImplicitSo
   e.put(s.externalWork);
   e.put(s.internalWork);
   e.put(s.dissipated);
+  e.put(s.dashpotWork);
   e.put(static_cast<std::int64_t>(s.released));
   checkpoint::putConditions(e, s.reactions, s.conditionDisplacements);
   e.count(s.stencilBases.size());
@@ -66,6 +67,7 @@ void writeImplicitCheckpoint(const std::filesystem::path& path, const ImplicitSo
   for (const long v : {run.iterations, run.halvings, run.released, run.factorizations, run.mostIterations, run.relaxed})
     e.put(static_cast<std::int64_t>(v));
   e.put(static_cast<std::int64_t>(run.krylovIterations));
+  e.put(static_cast<std::int64_t>(run.stabilized));
   checkpoint::putOutputs(e, run);
   checkpoint::writeSealed(path, kMagic, kImplicitCheckpointVersion, e.bytes());
 }
@@ -88,6 +90,7 @@ ImplicitBookkeeping readImplicitCheckpoint(const std::filesystem::path& path, Im
   s.externalWork = d.get<double>();
   s.internalWork = d.get<double>();
   s.dissipated = d.get<double>();
+  s.dashpotWork = d.get<double>();
   s.released = static_cast<long>(d.get<std::int64_t>());
   checkpoint::getConditions(d, s.reactions, s.conditionDisplacements);
   d.array(s.stencilBases, d.count(sizeof(std::int32_t)));
@@ -134,6 +137,7 @@ ImplicitBookkeeping readImplicitCheckpoint(const std::filesystem::path& path, Im
   for (long* v : {&run.iterations, &run.halvings, &run.released, &run.factorizations, &run.mostIterations, &run.relaxed})
     *v = static_cast<long>(d.get<std::int64_t>());
   run.krylovIterations = static_cast<long>(d.get<std::int64_t>());
+  run.stabilized = static_cast<long>(d.get<std::int64_t>());
   checkpoint::getOutputs(d, run);
   if (!d.done()) refuse("corrupted (bytes left after the payload)");
   try {

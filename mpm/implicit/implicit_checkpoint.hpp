@@ -3,11 +3,11 @@
 // run's (mpm/explicit/explicit_checkpoint.hpp) but with the implicit solver's state, so a restarted run continues
 // bitwise as the uninterrupted one, on any thread count. Written atomically and durably.
 //
-// Format (version 6; numbers in the machine's byte order):
+// Format (version 7; numbers in the machine's byte order):
 //   header, 32 bytes: "ECMIMPCK" | u32 version | u32 0x01020304 | u64 payload bytes | u64 FNV-1a 64
 //   payload: u64 scene file hash | i32 threads |
 //            solver: f64 time, load factor, next piece (pseudo-time), next opening (mm) | i64 steps | f64 external work, internal
-//              work, dissipated | i64 snap-back releases | u64 conditions, each f64 reaction x y,
+//              work, dissipated, the dashpots' work | i64 snap-back releases | u64 conditions, each f64 reaction x y,
 //              prescribed displacement x y |
 //            geometry: u64 g, i32 stencil first node g | u64 c, u8 prescribed c |
 //              factorised tangent: i64 rows (0: none), u64 nnz, i32 outer rows+1, i32 inner nnz, f64 nnz,
@@ -17,7 +17,7 @@
 //              last opening |
 //            platens, particles and crack paths (as mpm/explicit/explicit_checkpoint.hpp) |
 //            run: f64 progress, next snapshot, peak load, stop_when peak, u64 q, f64 3 of each platen, linear-solve seconds | i64 iterations,
-//              halvings, releases, factorisations, most iterations in a step, relaxed steps, Krylov iterations |
+//              halvings, releases, factorisations, most iterations in a step, relaxed steps, Krylov iterations, stabilised steps |
 //              u64 history.csv bytes, FNV-1a 64, rows | u64 snapshots, f64 their times
 #include <cstdint>
 #include <filesystem>
@@ -31,8 +31,9 @@ namespace ecm::mpm {
 
 // 2: the adaptive opening step, the stop_when peak; 3: the last step's increments (indirect control);
 // 4: the Krylov iterations on the kept factorisation; 5: the crack paths; 6: the platens, and the
-// reduction a factorised tangent of reduced unknowns was made for
-inline constexpr std::uint32_t kImplicitCheckpointVersion = 6;
+// reduction a factorised tangent of reduced unknowns was made for; 7: the stabilised steps and their
+// dashpots' work
+inline constexpr std::uint32_t kImplicitCheckpointVersion = 7;
 
 // What an implicit run carries besides the solver: the run loop's book, the progress and the
 // solver's counters.
@@ -42,6 +43,7 @@ struct ImplicitBookkeeping : RunBook {
   double linearSolveSeconds = 0.0;
   long iterations = 0, halvings = 0, released = 0, factorizations = 0, mostIterations = 0, relaxed = 0;
   long krylovIterations = 0;  // GMRES vectors on the kept factorisation
+  long stabilized = 0;        // load steps solved by proximal steps (docs/implicit.md, "Stabilised steps")
 };
 
 // Throws io::OutputError naming the file when it cannot be written (the old one stays).

@@ -36,7 +36,7 @@ ImplicitSolver::ImplicitSolver(Scene scene, int threads)
 Energies ImplicitSolver::energies() const {
   double strain = 0.0;
   for (std::size_t i = 0; i < particles_.size(); ++i) strain += 0.5 * particles_.volume[i] * particles_.stress[i].dot(particles_.strain[i]);
-  return {0.0, strain, totals_.externalWork, totals_.dissipated, 0.0};
+  return {0.0, strain, totals_.externalWork, totals_.dissipated, totals_.damping};  // damping: the stabilised steps' dashpots
 }
 
 ImplicitSolver::SavedState ImplicitSolver::saved() const {
@@ -44,6 +44,7 @@ ImplicitSolver::SavedState ImplicitSolver::saved() const {
   s.time = time_, s.loadFactor = lambda_, s.nextPiece = nextPiece_, s.nextOpening = nextOpening_, s.steps = steps_;
   s.externalWork = totals_.externalWork, s.internalWork = internalWork_, s.dissipated = totals_.dissipated;
   s.released = totals_.released;
+  s.dashpotWork = totals_.damping;
   for (const ConditionState& c : conditions_) {
     s.reactions.push_back(c.reaction);
     s.conditionDisplacements.push_back(c.displacement);
@@ -69,6 +70,7 @@ void ImplicitSolver::restore(const SavedState& s) {
   lastIncrement_ = {s.lastIncrement, s.lastLoadFactorIncrement, s.lastOpening};
   totals_.externalWork = s.externalWork, internalWork_ = s.internalWork, totals_.dissipated = s.dissipated;
   totals_.released = s.released;
+  totals_.damping = s.dashpotWork;
   for (std::size_t c = 0; c < conditions_.size(); ++c) {
     conditions_[c].reaction = s.reactions[c];
     conditions_[c].displacement = s.conditionDisplacements[c];

@@ -59,6 +59,7 @@ class ImplicitSolver {
     double time = 0.0, loadFactor = 0.0, nextPiece = 0.0, nextOpening = 0.0;
     long steps = 0;
     double externalWork = 0.0, internalWork = 0.0, dissipated = 0.0;
+    double dashpotWork = 0.0;  // stabilised steps' (docs/implicit.md, "Stabilised steps")
     long released = 0;
     std::vector<Vec2> reactions, conditionDisplacements;  // per condition
     // The last step's geometry (its stencils' first nodes, its prescribed components) and the
@@ -102,9 +103,17 @@ class ImplicitSolver {
   bool prepare(double dt, const IndirectControl* control, Attempt& a);
   // Newton over the piece (of pseudo-time dt, or of opening under `control`); true when converged.
   bool solvePiece(const IndirectControl* control, double piece, Attempt& a);
+  // A piece of displacement control that Newton cannot solve, stabilised by dashpots at its cracked
+  // points and solved again with them weakened to 0 (docs/implicit.md, "Stabilised steps"): true
+  // with `a` the attempt of the smallest alpha that converged.
+  bool solveStabilized(double piece, Attempt& a);
+  static constexpr int kMaxProximalSteps = 400;
+  static constexpr double kLargestStabilization = 1.0;  // alpha
+  static constexpr double kFinishFromRelative = 100.0;  // Newton finishes a proximal solution within 100 tolerances
   ImplicitStepReport advance(const IndirectControl* control, double largest, double remaining);
   ImplicitStepReport stepInPieces(const IndirectControl* control, double size);
-  void commit(const Attempt& a, double dt);
+  // Returns the energy a stabilised step's dashpots took (0 for any other step).
+  double commit(const Attempt& a, double dt);
   // Grows the crack paths from a converged trial; how many of its held points are now on a path.
   std::size_t growCrackPaths(const Trial& t);
   static constexpr int kMaxPathRedos = 50;  // tries of one piece with grown paths

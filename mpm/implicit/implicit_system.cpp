@@ -218,7 +218,7 @@ bool restoreGeometry(const StepSetup& setup, std::size_t particles, const std::v
 
 void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometry& g, const Eigen::VectorXd& du,
                    bool withTangent, SnapBackPolicy snapBack, Trial& t, const Eigen::VectorXd* direction,
-                   const std::vector<std::uint8_t>* secant, const ReleasedStarts* kept) {
+                   const std::vector<std::uint8_t>* secant, const ReleasedStarts* kept, const Dashpots& dashpots) {
   const std::size_t count = p.size();
   const int nx = setup.scene.grid.nodesX(), support = supportSize(setup.scene.solver.shapeFunction);
   t.strain.resize(count);
@@ -227,6 +227,9 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
   t.secondBand.assign(count, std::nullopt);
   t.dissipation.assign(count, 0.0);
   t.tangents.resize(count);
+  const double stabilization = dashpots.alpha;
+  if (stabilization > 0.0) t.dashpot.assign(count, Voigt::Zero());
+  else t.dashpot.clear();
   t.elastic.assign(count, 0);
   t.integrity = p.integrity;
   t.failed = SIZE_MAX;
@@ -318,6 +321,13 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
     }
     t.tangents[i] = secant && (*secant)[i] && band && !second && m.enriched() ? m.enriched()->secantTangent(*band) : r.tangent;
     t.elastic[i] = g.undamaged[i] && !band && !second && r.tangent == m.stiffness() ? 1 : 0;
+    const bool cracked = band || second || (!t.integrity.empty() && t.integrity[i] < 1.0);
+    if (stabilization > 0.0 && cracked) {  // the dashpot in parallel (docs/implicit.md, "Stabilised steps")
+      const Voigt stretch = dashpots.from ? Voigt(total - strainIncrement(e, *dashpots.from)) : total;
+      t.dashpot[i] = stabilization * (m.stiffness() * stretch);
+      t.tangents[i] += stabilization * m.stiffness();
+      t.elastic[i] = 0;
+    }
   }
   t.released = released;
   std::sort(t.releases.begin(), t.releases.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
@@ -340,7 +350,7 @@ void evaluateTrial(const StepSetup& setup, const Particles& p, const StepGeometr
   for (std::size_t i = 0; i < count; ++i) {
     const ElementNodes e = elementNodes(g.stencils[i], nx, support);
     const double v = p.volume[i];
-    const Voigt& s = t.stress[i];
+    const Voigt s = t.dashpot.empty() ? t.stress[i] : Voigt(t.stress[i] + t.dashpot[i]);
     for (int a = 0; a < e.count; ++a) {  // f_int = V B^T sigma
       t.internalForce[2 * e.node[a]] += v * (e.gx[a] * s[0] + e.gy[a] * s[2]);
       t.internalForce[2 * e.node[a] + 1] += v * (e.gy[a] * s[1] + e.gx[a] * s[2]);

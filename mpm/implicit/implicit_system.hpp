@@ -82,12 +82,23 @@ struct ReleasedStarts {
   std::vector<ReleasedStart> starts;
 };
 
+// The dashpots of a stabilised step (docs/implicit.md, "Stabilised steps"): alpha, and the
+// increments (per node component) from which they stretch (nullptr: the step's start).
+struct Dashpots {
+  double alpha = 0.0;
+  const Eigen::VectorXd* from = nullptr;
+};
+
 // The particles' states at the end of the step for a trial du, not committed.
 struct Trial {
   std::vector<Voigt> strain, stress;              // per particle
   std::vector<double> integrity;                  // smeared crack (empty otherwise)
   std::vector<std::optional<BandState>> band, secondBand;  // per particle: its bands after the step
   std::vector<double> dissipation;                // per particle, per unit volume (MPa)
+  // A stabilised step (docs/implicit.md, "Stabilised steps"): per particle the dashpot's stress
+  // alpha D_e d eps at its cracked points, which the internal forces carry and the committed
+  // state does not; empty when the step is not stabilised.
+  std::vector<Voigt> dashpot;
   std::vector<Tangent> tangents;                  // per particle: its consistent tangent D_p
   std::vector<std::uint8_t> elastic;              // per particle: D_p is its material's elastic stiffness
   Eigen::VectorXd internalForce;                  // per node component (N)
@@ -109,10 +120,13 @@ struct Trial {
 // (TwoPhasePoint::secantTangent) instead of the consistent one.
 // With `kept`, the points it holds start from their released states, and the trial lists the
 // points it releases with their starts (Trial::releases).
+// With `dashpots` (alpha > 0), each point cracked in the trial carries a dashpot in parallel,
+// alpha D_e (d eps - d eps of `from`) (Trial::dashpot), and its tangent alpha D_e more
+// (docs/implicit.md, "Stabilised steps").
 void evaluateTrial(const StepSetup& setup, const Particles& particles, const StepGeometry& geometry,
                    const Eigen::VectorXd& du, bool withTangent, SnapBackPolicy snapBack, Trial& trial,
                    const Eigen::VectorXd* direction = nullptr, const std::vector<std::uint8_t>* secant = nullptr,
-                   const ReleasedStarts* kept = nullptr);
+                   const ReleasedStarts* kept = nullptr, const Dashpots& dashpots = {});
 // Keeps the releases of `trial` in `kept` (a point released again gets its new start).
 void keepReleases(const Trial& trial, std::size_t particles, ReleasedStarts& kept);
 // K of a trial evaluated without it: the elastic part plus, in particle order, what the

@@ -42,6 +42,56 @@ bool ImplicitSolver::solvePiece(const IndirectControl* control, double piece, At
   return solveNewton(problem, context, a);
 }
 
+// Proximal steps (docs/implicit.md, "Stabilised steps"): each solves the piece with dashpots that
+// stretch from the last one's solution, so that the sequence walks down to a state in equilibrium
+// without them, which Newton then finishes from there.
+bool ImplicitSolver::solveStabilized(double piece, Attempt& result) {
+  const auto attempt = [&](const Dashpots& dashpots, const Eigen::VectorXd* from, int iterations, Attempt& a) {
+    a.reuseRatio = 0.0;  // Newton proper
+    a.maxIterations = iterations;
+    a.lastResort = true;
+    a.snapBack = setup_.scene.solver.snapBack == SnapBackPolicy::Release ? SnapBackPolicy::Release : SnapBackPolicy::Stop;
+    a.dashpots = dashpots;
+    a.warmStart = from;
+    return solvePiece(nullptr, piece, a);
+  };
+  double alpha = settings_.stabilization, relative = INFINITY;
+  const double smallest = alpha / 64.0;  // a settled sequence weakens its dashpots to this
+  Eigen::VectorXd from;  // the last proximal step's solution (empty: the step's start)
+  for (int k = 0; k < kMaxProximalSteps; ++k) {
+    Attempt a;
+    const Eigen::VectorXd* start = from.size() > 0 ? &from : nullptr;
+    if (!attempt({alpha, start}, start, 4 * settings_.maxIterations, a)) {
+      if (a.reason != NewtonFailure::NotConverged || alpha >= kLargestStabilization) {
+        result = std::move(a);
+        return false;
+      }
+      alpha = std::min(4.0 * alpha, kLargestStabilization);  // stiffer dashpots: a shorter proximal step
+      continue;
+    }
+    from = a.du;
+    // Equilibrium without the dashpots: the residual of the material's forces alone.
+    Trial bare;
+    evaluateTrial(setup_, particles_, geometry_, from, false, a.snapBack, bare, nullptr, nullptr, a.keptStarts());
+    if (bare.failed != SIZE_MAX) continue;
+    const Eigen::VectorXd r = onUnknowns(geometry_.dofs, a.unknownReduction(), [&](std::int32_t c) { return a.external[c] - bare.internalForce[c]; });
+    relative = r.norm() / std::max({a.external.norm(), bare.internalForce.norm(), 1e-300});
+    if (relative <= kFinishFromRelative * settings_.tolerance) {
+      Attempt b;
+      if (attempt({}, &from, settings_.maxIterations, b)) {
+        b.warmStart = nullptr;
+        b.report.proximalSteps = k + 1;
+        result = std::move(b);
+        return true;
+      }
+    }
+    if (a.report.iterations < settings_.hardIterations) alpha = std::max(smallest, 0.5 * alpha);
+  }
+  result.fail(kMaxProximalSteps, relative, NewtonFailure::NotConverged,
+              "a stabilised step did not settle in " + std::to_string(kMaxProximalSteps) + " proximal steps");
+  return false;
+}
+
 ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, double largest, double remaining) {
   ImplicitStepReport total;
   double& nextPiece = control ? nextOpening_ : nextPiece_;  // of pseudo-time, or of opening (mm)
@@ -72,6 +122,12 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
     // is carried into the next step's equilibrium (docs/implicit.md, "Load steps").
     bool relaxed = false;
     if (!ok && a.stalled && a.reuseRatio == 0.0 && a.failedResidual <= settings_.acceptTolerance) ok = relaxed = true;
+    // A smallest piece that Newton cannot solve: stabilised (docs/implicit.md, "Stabilised steps").
+    if (!ok && finest && !control && a.reason == NewtonFailure::NotConverged && settings_.stabilization > 0.0) {
+      Attempt s;
+      if (solveStabilized(piece, s)) a = std::move(s), ok = true;
+      else if (s.reason != NewtonFailure::None) a = std::move(s);
+    }
     // A piece that carries a point far past its onset is cut (docs/implicit.md, "Load steps").
     if (ok && !finest && a.trial.onsetOvershoot > settings_.onsetOvershoot)
       ok = a.fail(a.report.iterations, a.report.residual, NewtonFailure::OnsetOvershoot,
@@ -89,7 +145,7 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
       continue;
     }
     if (ok) {
-      commit(a, control ? 0.0 : piece);
+      const double dashpotWork = commit(a, control ? 0.0 : piece);
       checkBalance();
       total.size = piece;
       total.cuts = cuts;
@@ -98,6 +154,8 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
       total.relaxed = relaxed ? 1 : 0;
       total.released = a.releases();
       total.onsetOvershoot = a.trial.onsetOvershoot;
+      total.proximalSteps = a.report.proximalSteps;
+      total.dashpotWork = dashpotWork;
       // The next piece: longer after an easy step, shorter after a hard one.
       double grow = a.report.iterations <= settings_.easyIterations ? 2.0
                     : a.report.iterations >= settings_.hardIterations ? 0.5 : 1.0;
@@ -131,12 +189,13 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
       where = particles_.position[a.failedParticle];
       msg << "; particle " << a.failedParticle << " at (" << where[0] << ", " << where[1] << ") mm";
     }
-    // Under displacement control a cracked structure whose Newton fails on the smallest piece has
-    // most likely passed a limit point: past a structural snap-back no state of the structure
-    // has the prescribed displacement on the softening branch (docs/implicit.md).
+    // Under displacement control without stabilised steps a cracked structure whose Newton fails on
+    // the smallest piece has most likely passed a limit point: past a structural snap-back no state
+    // of the structure near the last has the prescribed displacement (docs/implicit.md).
     const bool cracked = std::any_of(particles_.band.begin(), particles_.band.end(), [](std::int32_t b) { return b >= 0; }) ||
                          std::any_of(a.trial.band.begin(), a.trial.band.end(), [](const auto& b) { return b.has_value(); });
-    const bool likelyLimitPoint = !control && cracked && (a.reason == NewtonFailure::NotConverged || a.reason == NewtonFailure::Singular);
+    const bool likelyLimitPoint = !control && cracked && settings_.stabilization == 0.0 &&
+                                  (a.reason == NewtonFailure::NotConverged || a.reason == NewtonFailure::Singular);
     if (likelyLimitPoint)
       msg << ". The structure has most likely passed a limit point (a structural snap-back: past its peak the load and "
              "the displacement fall together), which displacement control cannot follow; indirect control "
@@ -168,6 +227,8 @@ ImplicitStepReport ImplicitSolver::stepInPieces(const IndirectControl* control, 
     total.relaxed += r.relaxed;
     total.linearSolveSeconds += r.linearSolveSeconds;
     total.onsetOvershoot = std::max(total.onsetOvershoot, r.onsetOvershoot);
+    total.proximalSteps += r.proximalSteps;
+    total.dashpotWork += r.dashpotWork;
   }
   return total;
 }

@@ -4,13 +4,22 @@
 
 namespace ecm::mpm {
 
-void ImplicitSolver::commit(const Attempt& a, double dt) {
+double ImplicitSolver::commit(const Attempt& a, double dt) {
   const Scene& scene = setup_.scene;
   const Trial& t = a.trial;
   Particles& p = particles_;
   const int nx = scene.grid.nodesX(), support = supportSize(scene.solver.shapeFunction);
   double internal = 0.0;
+  // A stabilised step: the energy its dashpots took, what a dynamic jump would have turned into
+  // kinetic energy (docs/implicit.md, "Stabilised steps"): its external work less what the strain
+  // energy gained and the materials dissipated.
+  const bool stabilized = a.report.proximalSteps > 0;
+  double strainChange = 0.0, dissipatedInStep = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) {
+    if (stabilized) {
+      strainChange += 0.5 * p.volume[i] * (t.stress[i].dot(t.strain[i]) - p.stress[i].dot(p.strain[i]));
+      dissipatedInStep += p.volume[i] * t.dissipation[i];
+    }
     const Stencil& s = geometry_.stencils[i];
     Vec2 move = Vec2::Zero();
     for (int j = 0; j < support; ++j)
@@ -116,10 +125,13 @@ void ImplicitSolver::commit(const Attempt& a, double dt) {
   totals_.externalWork += external;
   internalWork_ += internal;
   totals_.released += a.releases();
+  const double dashpotWork = stabilized ? external - strainChange - dissipatedInStep : 0.0;
+  totals_.damping += dashpotWork;
   if (a.dTau != 0.0) lastIncrement_ = {a.du, a.dLambda, a.dTau};
   lambda_ += a.dLambda;
   time_ += dt;
   ++steps_;
+  return dashpotWork;
 }
 
 }  // namespace ecm::mpm

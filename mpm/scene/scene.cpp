@@ -84,6 +84,7 @@ void validateImplicit(const Scene& s) {
   requireRange("solver.max_halvings", im.maxHalvings, 0.0, 30.0, true, true);
   requireRange("solver.onset_overshoot", im.onsetOvershoot, 0.0, 1.0, false, true);
   requireRange("solver.accept_tolerance", im.acceptTolerance, im.tolerance, 1e-2, true, true);
+  requireRange("solver.stabilization", im.stabilization, 0.0, 1.0, true, true);
   if (!available(im.linearSolver))
     throw ValueError("solver.linear_solver", im.linearSolver == LinearSolverKind::Amg
                                                  ? "this build has no hypre (libhypre-dev); use umfpack or sparselu"

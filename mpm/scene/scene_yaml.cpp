@@ -95,6 +95,7 @@ ImplicitSettings readImplicitSettings(const YamlMap& m) {
   im.maxHalvings = m.getOr<int>("max_halvings", im.maxHalvings);
   im.onsetOvershoot = m.getOr<double>("onset_overshoot", im.onsetOvershoot);
   im.acceptTolerance = m.getOr<double>("accept_tolerance", std::max(im.acceptTolerance, im.tolerance));
+  im.stabilization = m.getOr<double>("stabilization", im.stabilization);
   im.linearSolver = m.getEnumOr("linear_solver", std::array{LinearSolverKind::Umfpack, LinearSolverKind::SparseLU, LinearSolverKind::Amg},
                                 im.linearSolver);
   if (m.has("control")) {
@@ -160,7 +161,7 @@ SolverSettings readSolver(const YamlMap& m, const std::string& preset) {
       m.reject(k, "is a key of explicit scenes (implicit_static has no time step, mass or damping)");
     s.implicit = readImplicitSettings(m);
   } else {
-    for (const char* k : {"tolerance", "max_iterations", "max_halvings", "onset_overshoot", "accept_tolerance", "load_step", "control",
+    for (const char* k : {"tolerance", "max_iterations", "max_halvings", "onset_overshoot", "accept_tolerance", "stabilization", "load_step", "control",
                           "linear_solver"})
       m.reject(k, "is a key of implicit_static scenes (this one is explicit)");
     s.explicitScheme = readExplicitSettings(m, scheme);

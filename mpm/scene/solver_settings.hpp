@@ -63,6 +63,11 @@ struct ImplicitSettings {
   // this is kept and counted (a point at the kink between loading and unloading can keep Newton
   // from the tolerance at any step size; the next step's Newton takes the residual up).
   double acceptTolerance = 1e-4;
+  // A load step whose smallest piece does not converge is solved with a dashpot in parallel at
+  // its cracked points, alpha D_e d eps, and then again with alpha / 10, alpha / 100 and 0, each
+  // from the last solution; the step keeps the smallest alpha that converged (docs/implicit.md,
+  // "Stabilised steps"). 0: never (the run stops there).
+  double stabilization = 1e-2;
   double loadStep = 0.0;    // pseudo-time per load step (s), displacement control
   LinearSolverKind linearSolver = defaultLinearSolver();
   struct Indirect {

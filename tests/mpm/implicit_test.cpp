@@ -388,6 +388,61 @@ IndirectControl weakRowOpening(const Grid& g) {
 // edge reach the margin nodes with weight and gradient exactly 0, which must not become unknowns.
 class ImplicitBar : public ::testing::TestWithParam<ShapeFunction> {};
 
+// The same bar under displacement control of its top, 0.01 mm of pseudo-time per step to
+// 0.12 mm: past the peak (delta 0.0906 mm) no equilibrium near the last one has the prescribed
+// displacement, and the step is stabilised (docs/implicit.md, "Stabilised steps"): its proximal
+// steps walk the bar down to the closed form's branch after the snap-back, at the same delta, as a
+// dynamic test would jump. Expected values from the closed form (bar_closed_form.hpp): every
+// row on the curve, the rows after the jump on its branch past the least delta, and the energy the
+// dashpots took equal to the area of the loop the jump cuts off, the external work of the jump
+// less the work along the curve from the state before it, over the peak and the snap-back, to the
+// state after it (0.62 N mm).
+TEST(ImplicitBarJump, DisplacementControlJumpsTheSnapBackInAStabilisedStep) {
+  const DamageLawParams law{32000.0, kBarWeakFt, ecm::test::kEp, ecm::test::kN};
+  const BarClosedForm exact(law, kBarLength, ecm::test::kBandWidth, 1e-4);
+  Scene scene = snapBackBar();
+  scene.conditions[2].component[1] = {Prescribed::Displacement, TimeFunction::linearRamp(0.12, 1.0)};
+  ImplicitSettings settings;
+  settings.loadStep = 0.01;
+  settings.maxHalvings = 4;
+  ASSERT_GT(settings.stabilization, 0.0);  // on by default
+  scene.solver.implicit = settings;
+  ImplicitSolver solver(scene);
+  const double area = 20.0 * scene.thickness;
+  std::vector<std::pair<double, double>> rows;  // (delta, F)
+  int stabilized = 0;
+  double worst = 0.0, dashpots = 0.0, before = 0.0, after = 0.0, fBefore = 0.0, fAfter = 0.0;
+  while (solver.time() < 1.0 - 1e-12) {
+    const double d0 = solver.conditions()[2].displacement[1], f0 = solver.conditions()[2].reaction[1];
+    const ImplicitStepReport r = solver.advance(settings.loadStep, 1.0 - solver.time());
+    const double delta = solver.conditions()[2].displacement[1], force = solver.conditions()[2].reaction[1];
+    worst = std::max(worst, exact.distance(delta, force / area));
+    if (r.proximalSteps > 0) ++stabilized, dashpots += r.dashpotWork, before = d0, fBefore = f0, after = delta, fAfter = force;
+  }
+  ASSERT_EQ(stabilized, 1);
+  EXPECT_NEAR(solver.energies().damping, dashpots, 1e-12);
+  // The closed form's loop: along the curve from delta `before` on the rising branch, over the
+  // peak and down the snap-back, to delta `after` on the branch past the least delta.
+  const std::vector<double>& d = exact.delta;
+  const std::vector<double>& s = exact.sigma;
+  const auto top = static_cast<std::size_t>(std::max_element(s.begin(), s.end()) - s.begin());
+  const auto least = static_cast<std::size_t>(std::min_element(d.begin() + static_cast<std::ptrdiff_t>(top), d.end()) - d.begin());
+  // (The curve starts at the peak: the rising branch before it is the straight line F = E A delta / L.)
+  double along = 0.5 * (fBefore + s[top] * area) * (d[top] - before);
+  std::size_t k = top;
+  for (; k + 1 < d.size() && (k < least || d[k + 1] < after); ++k) along += 0.5 * (s[k] + s[k + 1]) * area * (d[k + 1] - d[k]);
+  ASSERT_LT(k + 1, d.size());
+  const double last = s[k] + (after - d[k]) / (d[k + 1] - d[k]) * (s[k + 1] - s[k]);  // sigma at `after`
+  along += 0.5 * (s[k] + last) * area * (after - d[k]);
+  const double loop = 0.5 * (fBefore + fAfter) * (after - before) - along;
+  std::printf("[ bar jump ] before %.5f mm, %.3f N; after %.5f mm, %.3f N; dashpots %.5f N mm, the closed form's loop %.5f N mm; "
+              "worst distance to the curve %.2e\n", before, fBefore, after, fAfter, dashpots, loop, worst);
+  EXPECT_GT(fBefore, 0.99 * kBarWeakFt * area);  // it jumps from the peak ...
+  EXPECT_LT(fAfter, 0.1 * kBarWeakFt * area);    // ... to the branch past the snap-back
+  EXPECT_LT(worst, 1e-3);
+  EXPECT_NEAR(dashpots, loop, 1e-3 * loop);  // 1e-5 measured
+}
+
 TEST_P(ImplicitBar, IndirectControlTracesTheBarsStructuralSnapBack) {
   const DamageLawParams law{32000.0, kBarWeakFt, ecm::test::kEp, ecm::test::kN};
   ImplicitSolver solver(snapBackBar(GetParam()));
