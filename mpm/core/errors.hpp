@@ -25,7 +25,7 @@ enum class FailureKind {
   SingularTangent,     // implicit: the tangent was singular on the smallest piece
   OnsetOvershoot,      // implicit: even the smallest piece carried a point too far past its onset
   ControlBlind,        // implicit, indirect control: the opening does not change with the load factor
-  DampingWork,         // explicit: the damping's work passed the energy put into the run
+  DampingWork,         // the damping's work (explicit) or the stabilised steps' dashpots' (implicit) passed the energy put in
   WorkImbalance,       // implicit: the external and internal works parted (steps not in equilibrium)
   Output,              // a file could not be written once the run had begun (full disk?)
 };

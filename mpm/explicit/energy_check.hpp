@@ -11,19 +11,10 @@
 #include <optional>
 #include <string>
 
+#include "mpm/setup/damping_limit.hpp"  // kDampingWorkLimit, dampingOutrunsInput
 #include "mpm/explicit/explicit_solver.hpp"
 
 namespace ecm::mpm {
-
-// The share of the energy put in that the damping's work may reach, either way: all of it.
-inline constexpr double kDampingWorkLimit = 1.0;
-
-// Whether the damping's work (N mm) has left [-limit, limit] times what was put in (the external
-// work and `initial`, the kinetic and strain energy at step 0). Pure; the run's totals alone, no
-// pass over the particles.
-inline bool dampingOutrunsInput(const RunTotals& t, double initial) {
-  return std::abs(t.damping) > kDampingWorkLimit * std::max(t.externalWork + initial, 0.0) && t.damping != 0.0;
-}
 
 // Throws SimulationError (DampingWork) where dampingOutrunsInput, naming the step, the time,
 // both energies and the fastest particle.

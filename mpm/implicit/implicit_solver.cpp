@@ -1,6 +1,8 @@
 // The implicit solver's state (mpm/implicit/implicit_solver.hpp): construction, energies, what a
 // checkpoint keeps, the crack paths' growth and the work balance.
 #include "mpm/implicit/implicit_solver.hpp"
+
+#include "mpm/setup/damping_limit.hpp"
 #include "mpm/setup/stress_direction.hpp"
 
 #include <algorithm>
@@ -130,6 +132,14 @@ std::size_t ImplicitSolver::growCrackPaths(const Trial& t) {
 }
 
 void ImplicitSolver::checkBalance() const {
+  if (dampingOutrunsInput(totals_, 0.0)) {  // a stabilised step's dashpots (mpm/setup/damping_limit.hpp)
+    std::ostringstream msg;
+    msg << "implicit step " << steps_ << " (t = " << time_ << " s, load factor " << lambda_ << "): the energy the stabilised "
+        << "steps' dashpots took, " << totals_.damping << " N mm, is beyond the energy put into the run, " << totals_.externalWork
+        << " N mm: the stabilised step did not end at a state of lower energy";
+    throw SimulationError(FailureKind::DampingWork, steps_, std::nullopt, Vec2::Zero(), msg.str(), UpdateStatus::Converged,
+                          totals_.damping / std::max(std::abs(totals_.externalWork), 1e-300));
+  }
   const double scale = std::max({std::abs(totals_.externalWork), std::abs(internalWork_), 1e-9});
   const double gap = std::abs(totals_.externalWork - internalWork_);
   if (gap <= kBalanceTolerance * scale) return;
