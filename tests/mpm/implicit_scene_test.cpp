@@ -145,6 +145,28 @@ TEST(ImplicitScene, AStoppedIndirectRunRestartsBitwiseOnAnotherThreadCount) {
   expectRestartIsBitwise(scene, 120, 160);
 }
 
+// The bar under displacement control jumps its snap-back in a stabilised step, load step 77
+// (docs/implicit.md, "Stabilised steps"): a run stopped before it and one stopped after it both
+// restart bitwise, the energy its dashpots took (damping_Nmm) carried by the checkpoint.
+TEST(ImplicitScene, AStabilisedStepRestartsBitwiseStoppedBeforeOrAfterIt) {
+  const std::string bar = shippedBar();
+  std::string text = bar.substr(0, bar.find("  control:")) + "  load_step: 0.01\n  max_halvings: 4\n" + bar.substr(bar.find("end_time:"));
+  text = replaced(text, "displacement: {y: {type: hold, value: 0}}", "displacement: {y: {type: linear_ramp, value: 0.12, time: 1}}");
+  const Scene scene = readScene(io::parseYaml(text, "bar.yaml"));
+  expectRestartIsBitwise(scene, 70, 90);
+  const std::string history = expectRestartIsBitwise(scene, 80, 90);
+  // The jump is in it: one row with proximal steps, and the dashpots' energy from there on.
+  std::stringstream in(history);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_NE(line.find("damping_Nmm"), std::string::npos);
+  ASSERT_EQ(line.substr(line.rfind(',') + 1), "proximal_steps");
+  int jumps = 0;
+  while (std::getline(in, line))
+    if (std::stod(line.substr(line.rfind(',') + 1)) > 0.0) ++jumps;
+  EXPECT_EQ(jumps, 1);
+}
+
 // The same with tracked crack paths: the checkpoint holds them (the DEN coarse cracks from step 40).
 TEST(ImplicitScene, AStoppedRunWithTrackedCrackPathsRestartsBitwise) {
   Scene scene = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data" / "den" / "den-4b-coarse-implicit.yaml");
