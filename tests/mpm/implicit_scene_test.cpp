@@ -95,6 +95,13 @@ TEST(ImplicitScene, BadInputIsRefusedWithTheLineAndTheReason) {
     const Scene loose = readScene(io::parseYaml(replaced(bar, "tolerance: 1e-6 ", "tolerance: 5e-3 "), "bar.yaml"));
     EXPECT_EQ(loose.solver.implicit->acceptTolerance, 5e-3);
   }
+  {  // a stabilization out of [0, 1], or not a number, on its own line (26)
+    for (const char* value : {"1.5", "-0.01", "yes"}) {
+      const auto e = err(replaced(bar, "tolerance: 1e-6 ", std::string("tolerance: 1e-6\n  stabilization: ") + value + " "));
+      expectContains(e.what(), "solver.stabilization");
+      EXPECT_EQ(e.line, 26) << value;
+    }
+  }
 }
 
 std::string fileText(const std::filesystem::path& path) {
