@@ -125,8 +125,8 @@ ImplicitStepReport ImplicitSolver::advance(const IndirectControl* control, doubl
     // A smallest piece that Newton cannot solve: stabilised (docs/implicit.md, "Stabilised steps").
     if (!ok && finest && !control && a.reason == NewtonFailure::NotConverged && settings_.stabilization > 0.0) {
       Attempt s;
-      if (solveStabilized(piece, s)) a = std::move(s), ok = true;
-      else if (s.reason != NewtonFailure::None) a = std::move(s);
+      ok = solveStabilized(piece, s);  // a failure says why (its reason, residual and words)
+      a = std::move(s);
     }
     // A piece that carries a point far past its onset is cut (docs/implicit.md, "Load steps").
     if (ok && !finest && a.trial.onsetOvershoot > settings_.onsetOvershoot)
