@@ -16,12 +16,12 @@ CrackPathGeometry CrackPathGeometry::forGrid(const Vec2& origin, const Vec2& cel
   g.cellSize = cellSize;
   const double cell = std::sqrt(cellSize[0] * cellSize[1]);
   g.lookAhead = 2.0 * cell;  // docs/model.md, "Crack paths": past the points near onset ahead of a tip
-  g.averaging = std::max(2.0 * cell, 5.0);  // at least 5 mm (docs/model.md, "Crack paths")
+  g.averaging = std::max(2.0 * cell, 20.0);  // at least 20 mm (docs/model.md, "Crack paths")
   g.exclusion = std::max(4.0 * cell, 10.0);  // at least 10 mm (docs/model.md, "Crack paths")
   g.turnEvery = 0.5 * cell;
   g.interiorOverstress = 1.5;  // docs/model.md, "Crack paths"
   g.smallestKink = 5.0 * std::acos(-1.0) / 180.0;  // 5 degrees (docs/model.md, "Crack paths")
-  g.smallestRadius = 3.0 * g.averaging;             // docs/model.md, "Crack paths"
+  g.smallestRadius = std::max(15.0, 3.0 * cell);    // docs/model.md, "Crack paths"
   return g;
 }
 
@@ -123,6 +123,9 @@ Vec2 kinkedDirection(const Vec2& direction, const Voigt& s) {
   const Vec2 sn(s[0] * n[0] + s[2] * n[1], s[2] * n[0] + s[1] * n[1]);  // sigma n
   const double opening = n.dot(sn), shear = direction.dot(sn);
   if (!(opening > 0.0) || shear == 0.0) return direction;
+  // A weak field ahead (a ligament's compression zone near its far edge) does not steer the tip:
+  // it runs straight (docs/model.md, "Crack paths").
+  if (opening < kLeastSteeringOpening && std::abs(shear) < 1.0) return direction;
   // theta = 2 atan((K_I - sqrt(K_I^2 + 8 K_II^2)) / (4 K_II)), counter-clockwise from the crack's
   // line, with K_I, K_II in the ratio of max(sigma_nn, 1) and sigma_nt (Erdogan and Sih 1963)
   const double driving = std::max(opening, 1.0);
@@ -267,7 +270,7 @@ std::size_t CrackPaths::grow(const std::vector<Vec2>& opened, std::vector<OnsetC
     // (centred half a radius on: the tip's own flanks carry the crack's antisymmetric shear).
     if ((tip - arm.points[arm.points.size() - 2]).norm() < geometry_.turnEvery) continue;
     arm.points.push_back(tip);
-    if (const std::optional<Voigt> ahead = averaged(tip + 0.5 * geometry_.averaging * arm.direction, geometry_.averaging)) {
+    if (const std::optional<Voigt> ahead = averaged(tip + 0.5 * geometry_.averaging * arm.direction, geometry_.averaging, 0.0)) {
       const Vec2 turned = kinkedDirection(arm.direction, *ahead);
       const double kink = std::atan2(arm.direction[0] * turned[1] - arm.direction[1] * turned[0], arm.direction.dot(turned));
       if (std::abs(kink) >= geometry_.smallestKink) {
@@ -303,6 +306,11 @@ std::size_t CrackPaths::grow(const std::vector<Vec2>& opened, std::vector<OnsetC
     const Vec2& h = geometry_.cellSize;  // the centre of its cell
     for (int k = 0; k < 2; ++k)
       centre[k] = geometry_.origin[k] + (std::floor((centre[k] - geometry_.origin[k]) / h[k]) + 0.5) * h[k];
+    // It lies normal to the first principal direction of the stress of the points near onset
+    // around it, where that is tension; else of the candidates' own (docs/model.md, "Crack paths").
+    if (const std::optional<Voigt> around = averaged(centre, geometry_.averaging, kRootSharpness);
+        around && principalStresses(*around).first > 0.0)
+      stress = *around;
     const Vec2 d = perpendicular(principalStresses(stress).firstDirection);
     arms_.push_back({{centre}, d});
     arms_.push_back({{centre}, -d});

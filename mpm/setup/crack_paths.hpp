@@ -66,8 +66,15 @@ struct PathCrossing {
 };
 
 // The stress, in units of the tensile strength, averaged over the intact points within `radius`
-// of a point; nullopt where no such point is near.
-using AveragedStress = std::function<std::optional<Voigt>(const Vec2& at, double radius)>;
+// of a point, each weighted also by (Y / Y_onset)^sharpness, its driving force's share of onset
+// (at most 1): 0 for a tip's direction, kRootSharpness for a root's; nullopt where no such point
+// is near.
+using AveragedStress = std::function<std::optional<Voigt>(const Vec2& at, double radius, double sharpness)>;
+
+// A root's direction is read from the points near onset around it (docs/model.md, "Crack
+// paths"): a point at 0.97 of onset's stress counts 0.78 as much as one at onset, one at half
+// of it 0.004.
+inline constexpr double kRootSharpness = 4.0;
 
 // The direction in which a tip growing along `direction` runs on into the averaged stress `s`
 // (in units of the tensile strength) ahead of it: turned by the kink angle of the maximum hoop
@@ -76,7 +83,10 @@ using AveragedStress = std::function<std::optional<Voigt>(const Vec2& at, double
 // sigma_tt is (a principal direction would not: ahead of a mode-I tip sigma_tt ~ sigma_nn and the
 // principal axes swing with any shear). An opening stress below the strength does not drive the
 // crack yet and counts as the strength: the ratio of two weak stresses is noise. Unchanged where
-// sigma_nn is not tension.
+// sigma_nn is not tension, and where the field ahead is weak, sigma_nn below
+// kLeastSteeringOpening and |sigma_nt| below the strength: the tip then runs into a ligament's
+// compression zone, whose shear is the hinge's, not the tip's.
+inline constexpr double kLeastSteeringOpening = 0.25;  // of the tensile strength (docs/model.md, "Crack paths")
 Vec2 kinkedDirection(const Vec2& direction, const Voigt& s);
 
 class CrackPaths {
@@ -109,10 +119,12 @@ class CrackPaths {
   // first) that may start a crack (mayRoot) farther than `exclusion` from every path starts one
   // at the centre of the cell that holds the overstress-weighted centre of the candidates near it
   // (a crack that starts on a grid line, as on a symmetry plane, would flip between the cells on
-  // either side of it at the least turn), normal to the first principal direction of their
-  // overstress-weighted stress (the points that reach onset first say where a crack starts and
-  // how it lies). Returns how many candidates are now in a crossed cell (they may open a band
-  // when their update is taken again).
+  // either side of it at the least turn), normal to the first principal direction of the stress
+  // averaged around that centre over the points near onset (kRootSharpness; where that average
+  // is tension, else of the candidates' overstress-weighted stress): the points that reach onset
+  // first say where a crack starts, all those near onset how it lies (in an explicit step the
+  // points of one notch corner can pass onset a step before the other's). Returns how many
+  // candidates are now in a crossed cell (they may open a band when their update is taken again).
   std::size_t grow(const std::vector<Vec2>& opened, std::vector<OnsetCandidate> candidates, const AveragedStress& averaged);
 
   const std::vector<CrackArm>& arms() const { return arms_; }
