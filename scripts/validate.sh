@@ -66,6 +66,9 @@ declare -A scene=(
   [lpanel-coarse-tracked]=variant
   [lpanel-medium-tracked]=variant
   [lpanel-fine-tracked]=variant
+  [lpanel-coarse-second-band-tracked]=variant
+  [lpanel-medium-second-band-tracked]=variant
+  [lpanel-fine-second-band-tracked]=variant
 )
 runs=()
 for w in "$@"; do
@@ -90,6 +93,7 @@ done
 variant() {
   local name=$1 from material tracked=0 tension=0
   case "$name" in
+    *-second-band-tracked) from=$(variant "${name%-tracked}"); tracked=1 ;;  # (a material swap, then tracked)
     *-tracked) from=data/validation/${name%-tracked}.yaml; from=${from/den-rig-/den-4b-rig-}; tracked=1 ;;
   esac
   case "$name" in
