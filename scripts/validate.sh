@@ -69,6 +69,13 @@ declare -A scene=(
   [lpanel-coarse-second-band-tracked]=variant
   [lpanel-medium-second-band-tracked]=variant
   [lpanel-fine-second-band-tracked]=variant
+  [den-rig-coarse-second-band-tracked]=variant
+  [den-rig-medium-second-band-tracked]=variant
+  [den-rig-fine-second-band-tracked]=variant
+  [den-rig-coarse-implicit-tracked]=variant
+  [lpanel-coarse-implicit-tracked]=variant
+  [den-rig-coarse-second-band-implicit-tracked]=variant
+  [lpanel-coarse-second-band-implicit-tracked]=variant
 )
 runs=()
 for w in "$@"; do
@@ -93,18 +100,22 @@ done
 variant() {
   local name=$1 from material tracked=0 tension=0
   case "$name" in
-    *-second-band-tracked) from=$(variant "${name%-tracked}"); tracked=1 ;;  # (a material swap, then tracked)
+    *-second-band-tracked | *-second-band-implicit-tracked) from=$(variant "${name%-tracked}"); tracked=1 ;;  # (a material swap, then tracked)
     *-tracked) from=data/validation/${name%-tracked}.yaml; from=${from/den-rig-/den-4b-rig-}; tracked=1 ;;
   esac
   case "$name" in
     den-rig-coarse-tension*) from=data/validation/den-4b-rig-coarse.yaml; tension=1 ;;
   esac
   if [[ $tracked == 1 || $tension == 1 ]]; then
-    local solver='solver:' shear='&'
-    [[ $tracked == 1 ]] && solver='solver:\n  crack_path: tracked'
+    local rule='&' shear='&'
+    [[ $tracked == 1 ]] && rule='  crack_path: tracked'
     [[ $tension == 1 ]] && shear='    x: free   # P_s = 0: the DEN in pure tension'
     sed -e "s|{file: ../materials/|{file: $PWD/data/materials/|" -e "s|^name: .*|name: $name|" \
-        -e "s|^solver:$|$solver|" -e "s|^    x: {force: {type: table.*|$shear|" "$from" > "$out/scenes/$name.yaml"
+        -e "s|^  crack_path: free .*|$rule|" -e "s|^    x: {force: {type: table.*|$shear|" "$from" > "$out/scenes/$name.yaml"
+    if [[ $tracked == 1 ]] && ! grep -q '^  crack_path: tracked$' "$out/scenes/$name.yaml"; then
+      echo "error: $from has no 'crack_path: free' line to make tracked" >&2
+      exit 2
+    fi
     echo "$out/scenes/$name.yaml"
     return
   fi

@@ -44,9 +44,10 @@
 //     substep_levels: 4         # failed material updates retried with up to 2^levels sub-steps
 //     snap_back: release        # release | stop: an enriched point with no stable branch fails
 //                               # onto its stable branch (counted in summary.json) or stops the run
-//     crack_path: free          # free | tracked: where an enriched point may open its band;
+//     crack_path: tracked       # tracked | free: where an enriched point may open its band;
 //                               # tracked: only on the crack paths the run tracks, with their
-//                               # normals and effective sizes (docs/model.md, "Crack paths")
+//                               # normals and effective sizes (docs/model.md, "Crack paths");
+//                               # free (the paper's rule): wherever it reaches onset
 //   (or, implicit: solver: {scheme: implicit_static, tolerance: 1e-6, max_iterations: 25,
 //    max_halvings: 8, onset_overshoot: 0.05, accept_tolerance: 1e-4, linear_solver: umfpack,  # | sparselu | amg
 //    load_step: S | control: {indirect: {driven: [..], reference: [x, y],

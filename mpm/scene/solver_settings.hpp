@@ -120,7 +120,9 @@ struct SolverSettings {
   // increment): Release lets the band fail onto its stable branch (counted, reported); Stop
   // stops the run with the point's position and state (docs/model.md, "Snap-back on the path").
   SnapBackPolicy snapBack = kDefaultSnapBack;
-  CrackPathRule crackPath = CrackPathRule::Free;
+  // Tracked by default: a crack that grows through a stress gradient runs where a cohesive crack
+  // runs only on a tracked path (docs/model.md, "Crack paths"); Free is the paper's own rule.
+  CrackPathRule crackPath = CrackPathRule::Tracked;
   // The scheme: explicit (explicitScheme) unless `implicit` is set (scheme: implicit_static).
   ExplicitSettings explicitScheme;
   std::optional<ImplicitSettings> implicit;

@@ -283,38 +283,43 @@ std::size_t CrackPaths::grow(const std::vector<Vec2>& opened, std::vector<OnsetC
   }
   if (std::any_of(advance.begin(), advance.end(), [](double s) { return s > 0.0; })) index();
   // 2. Roots: candidates far from every path, the most overstressed first.
-  std::stable_sort(candidates.begin(), candidates.end(), [](const OnsetCandidate& a, const OnsetCandidate& b) {
-    return a.overstress > b.overstress || (a.overstress == b.overstress && a.particle < b.particle);
-  });
-  std::vector<std::uint8_t> used(candidates.size(), 0);
-  for (std::size_t c = 0; c < candidates.size(); ++c) {
-    if (used[c] || nearPath(candidates[c].position) || !mayRoot(candidates[c])) continue;
-    // The region's centre and stress: the candidates within the exclusion radius, by overstress.
-    Vec2 centre = Vec2::Zero();
-    Voigt stress = Voigt::Zero();
-    double weight = 0.0;
-    for (std::size_t k = c; k < candidates.size(); ++k) {
-      if (used[k] || !mayRoot(candidates[k]) ||
-          (candidates[k].position - candidates[c].position).norm() > geometry_.exclusion)
-        continue;
-      used[k] = 1;
-      centre += candidates[k].overstress * candidates[k].position;
-      stress += candidates[k].overstress * candidates[k].stress;
-      weight += candidates[k].overstress;
+  // (Most steps of a growing crack hold points at onset beside its path alone: no root to start,
+  // and nothing to sort.)
+  const auto mayStart = [this](const OnsetCandidate& c) { return !nearPath(c.position) && mayRoot(c); };
+  if (std::any_of(candidates.begin(), candidates.end(), mayStart)) {
+    std::stable_sort(candidates.begin(), candidates.end(), [](const OnsetCandidate& a, const OnsetCandidate& b) {
+      return a.overstress > b.overstress || (a.overstress == b.overstress && a.particle < b.particle);
+    });
+    std::vector<std::uint8_t> used(candidates.size(), 0);
+    for (std::size_t c = 0; c < candidates.size(); ++c) {
+      if (used[c] || !mayStart(candidates[c])) continue;
+      // The region's centre and stress: the candidates within the exclusion radius, by overstress.
+      Vec2 centre = Vec2::Zero();
+      Voigt stress = Voigt::Zero();
+      double weight = 0.0;
+      for (std::size_t k = c; k < candidates.size(); ++k) {
+        if (used[k] || !mayRoot(candidates[k]) ||
+            (candidates[k].position - candidates[c].position).norm() > geometry_.exclusion)
+          continue;
+        used[k] = 1;
+        centre += candidates[k].overstress * candidates[k].position;
+        stress += candidates[k].overstress * candidates[k].stress;
+        weight += candidates[k].overstress;
+      }
+      centre /= weight;
+      const Vec2& h = geometry_.cellSize;  // the centre of its cell
+      for (int k = 0; k < 2; ++k)
+        centre[k] = geometry_.origin[k] + (std::floor((centre[k] - geometry_.origin[k]) / h[k]) + 0.5) * h[k];
+      // It lies normal to the first principal direction of the stress of the points near onset
+      // around it, where that is tension; else of the candidates' own (docs/model.md, "Crack paths").
+      if (const std::optional<Voigt> around = averaged(centre, geometry_.averaging, kRootSharpness);
+          around && principalStresses(*around).first > 0.0)
+        stress = *around;
+      const Vec2 d = perpendicular(principalStresses(stress).firstDirection);
+      arms_.push_back({{centre}, d});
+      arms_.push_back({{centre}, -d});
+      index();
     }
-    centre /= weight;
-    const Vec2& h = geometry_.cellSize;  // the centre of its cell
-    for (int k = 0; k < 2; ++k)
-      centre[k] = geometry_.origin[k] + (std::floor((centre[k] - geometry_.origin[k]) / h[k]) + 0.5) * h[k];
-    // It lies normal to the first principal direction of the stress of the points near onset
-    // around it, where that is tension; else of the candidates' own (docs/model.md, "Crack paths").
-    if (const std::optional<Voigt> around = averaged(centre, geometry_.averaging, kRootSharpness);
-        around && principalStresses(*around).first > 0.0)
-      stress = *around;
-    const Vec2 d = perpendicular(principalStresses(stress).firstDirection);
-    arms_.push_back({{centre}, d});
-    arms_.push_back({{centre}, -d});
-    index();
   }
   std::size_t onPath = 0;
   for (const OnsetCandidate& c : candidates) onPath += crossingAt(c.position) ? 1 : 0;

@@ -83,6 +83,7 @@ Scene snapBackBlock() {
   g(0, 0) = 20.0;
   all.field = AffineVelocity{g, Vec2(450.0, 450.0), TimeFunction::hold(1.0)};
   s.conditions = {all};
+  s.solver.crackPath = CrackPathRule::Free;  // every point cracks where it stands (the paper's rule)
   return s;
 }
 

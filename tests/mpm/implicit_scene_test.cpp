@@ -78,7 +78,7 @@ TEST(ImplicitScene, BadInputIsRefusedWithTheLineAndTheReason) {
   {  // a driven condition that does not exist
     const auto e = err(replaced(bar, "driven: [top]", "driven: [roof]"));
     expectContains(e.what(), "no condition or platen named 'roof'");
-    EXPECT_EQ(e.line, 28);
+    EXPECT_EQ(e.line, 29);
   }
   {  // a control that names no node
     const std::string text = bar.substr(0, bar.find("      opening:")) + "      opening: []\n" + bar.substr(bar.find("      step: 1e-5"));
@@ -87,7 +87,7 @@ TEST(ImplicitScene, BadInputIsRefusedWithTheLineAndTheReason) {
   {  // a tolerance out of range
     const auto e = err(replaced(bar, "tolerance: 1e-6 ", "tolerance: 0.5 "));
     expectContains(e.what(), "tolerance");
-    EXPECT_EQ(e.line, 25);
+    EXPECT_EQ(e.line, 26);
   }
   {  // an accept_tolerance below the tolerance; without one, a loose tolerance is its own
     expectContains(err(replaced(bar, "tolerance: 1e-6 ", "tolerance: 1e-4\n  accept_tolerance: 1e-5 ")).what(),
@@ -95,11 +95,11 @@ TEST(ImplicitScene, BadInputIsRefusedWithTheLineAndTheReason) {
     const Scene loose = readScene(io::parseYaml(replaced(bar, "tolerance: 1e-6 ", "tolerance: 5e-3 "), "bar.yaml"));
     EXPECT_EQ(loose.solver.implicit->acceptTolerance, 5e-3);
   }
-  {  // a stabilization out of [0, 1], or not a number, on its own line (26)
+  {  // a stabilization out of [0, 1], or not a number, on its own line (27)
     for (const char* value : {"1.5", "-0.01", "yes"}) {
       const auto e = err(replaced(bar, "tolerance: 1e-6 ", std::string("tolerance: 1e-6\n  stabilization: ") + value + " "));
       expectContains(e.what(), "solver.stabilization");
-      EXPECT_EQ(e.line, 26) << value;
+      EXPECT_EQ(e.line, 27) << value;
     }
   }
 }
@@ -327,7 +327,7 @@ TEST(ImplicitScene, AnOpeningOffTheBodyOrOffTheNodesIsRefused) {
     const auto e = err(replaced(bar, "{node: [0, 500], component: y", "{node: [5, 500], component: y"));
     expectContains(e.what(), "solver.control.indirect.opening[0].node");
     expectContains(e.what(), "(5, 500) mm is not a grid node (the nearest is (10, 500) mm)");
-    EXPECT_EQ(e.line, 31);
+    EXPECT_EQ(e.line, 32);
   }
   {
     std::string zero = bar;
@@ -354,7 +354,7 @@ TEST(ImplicitScene, BSplinesAreRefusedWithTheReason) {
     readScene(io::parseYaml(replaced(shippedBar(), "shape_function: linear", "shape_function: bspline2"), "bar.yaml"));
   });
   expectContains(e.what(), "bspline2 is not offered with implicit_static");
-  EXPECT_EQ(e.line, 23);
+  EXPECT_EQ(e.line, 24);
 }
 
 // The bar pulled by its top under displacement control without stabilised steps: past its peak the

@@ -289,7 +289,7 @@ materials:
 bodies:
   - rve: {side: 5, seed: )" + std::to_string(seed) + R"(, volume_fraction: 0.2, diameters: [0.8, 1.6], itz_thickness: 0.25,
           gap: 0.1, tolerance: 0.05, matrix: rve-matrix, inclusion: rve-inclusion, itz: rve-itz}
-solver: {local_damping: 0.1, flip: 0.99}
+solver: {local_damping: 0.1, flip: 0.99, crack_path: free}   # the paper's rule, as data/rve/
 end_time: 1e-4
 conditions:
   - {name: base, box: {min: [0, 0], max: [5, 0]}, fixed: [y]}

@@ -35,6 +35,20 @@ TEST(SceneYaml, TheSnapBackDefaultIsReleaseInEveryReader) {
   EXPECT_EQ(snapBackPolicyOf("jump"), std::nullopt);
 }
 
+// docs/inputs.md: crack paths are tracked unless a scene says `crack_path: free` (the paper's rule),
+// as the paper's scenes and the free-rule validation tables' scenes do; the beam's say tracked.
+TEST(SceneYaml, CrackPathsAreTrackedUnlessASceneSaysFree) {
+  EXPECT_EQ(SolverSettings{}.crackPath, CrackPathRule::Tracked);
+  EXPECT_EQ(readScene(io::parseYaml(kScene, "t.yaml")).solver.crackPath, CrackPathRule::Tracked);
+  EXPECT_EQ(readScene(io::parseYaml(kScene + "solver: {crack_path: free}\n", "t.yaml")).solver.crackPath,
+            CrackPathRule::Free);
+  const auto data = std::filesystem::path(ECM_SOURCE_DIR) / "data";
+  for (const char* free : {"den/den-4b-coarse.yaml", "rve/rve-coarse.yaml", "mpm/bar-snapback-explicit.yaml",
+                           "validation/den-4b-rig-coarse.yaml", "validation/lpanel-coarse-implicit.yaml"})
+    EXPECT_EQ(loadSceneFile(data / free).solver.crackPath, CrackPathRule::Free) << free;
+  EXPECT_EQ(loadSceneFile(data / "validation/beam-coarse.yaml").solver.crackPath, CrackPathRule::Tracked);
+}
+
 TEST(SceneYaml, ShippedSecondBandScenesDifferOnlyInTheMaterialOption) {
   for (const std::string mesh : {"coarse", "medium", "fine", "coarse-implicit", "medium-implicit"}) {
     const auto dir = std::filesystem::path(ECM_SOURCE_DIR) / "data" / "den";
