@@ -207,6 +207,10 @@ TEST(CrackPaths, OnsetStartsOneCrackAtTheCentreOfItsCell) {
   // A point at onset within the exclusion radius of that crack (beside it) stays held.
   EXPECT_EQ(paths.grow({}, {{2, Vec2(3.0, 0.6), 1.5, s}}, uniform(Voigt::Zero())), 0u);
   EXPECT_EQ(paths.arms().size(), 2u);
+  // A held point on the path starts nothing and is counted: it opens its band when its update
+  // is taken again (the implicit solver repeats the load step for it).
+  EXPECT_EQ(paths.grow({}, {{4, Vec2(0.4, 0.4), 1.2, s}}, uniform(Voigt::Zero())), 1u);
+  EXPECT_EQ(paths.arms().size(), 2u);
   EXPECT_TRUE(paths.nearPath(Vec2(0.5 + paths.geometry().exclusion, 0.5)));
   // A second region of onset beyond the exclusion radius starts a crack of its own.
   const double far = paths.geometry().exclusion + 2.0;
