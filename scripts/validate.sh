@@ -100,7 +100,7 @@ done
 variant() {
   local name=$1 from material tracked=0 tension=0
   case "$name" in
-    *-second-band-tracked | *-second-band-implicit-tracked) from=$(variant "${name%-tracked}"); tracked=1 ;;  # (a material swap, then tracked)
+    *-second-band-tracked | *-second-band-implicit-tracked) from=$(variant "${name%-tracked}") || exit 2; tracked=1 ;;  # (a material swap, then tracked)
     *-tracked) from=data/validation/${name%-tracked}.yaml; from=${from/den-rig-/den-4b-rig-}; tracked=1 ;;
   esac
   case "$name" in
@@ -142,7 +142,9 @@ variant() {
 failed=()
 for r in "${runs[@]}"; do
   s=${scene[$r]}
-  [[ $s == variant ]] && s=$(variant "$r")
+  if [[ $s == variant ]]; then
+    s=$(variant "$r") || exit 2  # (a scene it cannot make: refused, named on stderr)
+  fi
   echo "== $r ($s)" >&2
   start=$SECONDS
   if [[ -f $out/$r/checkpoint.bin ]] && grep -q '"status": *"stopped"' "$out/$r/summary.json" 2>/dev/null; then
