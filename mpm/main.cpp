@@ -94,6 +94,12 @@ int main(int argc, char** argv) {
   try {
     ecm::mpm::Scene scene = ecm::mpm::loadSceneFile(scenePath);
     if (!preset.empty()) ecm::mpm::applyPreset(*ecm::mpm::findPreset(preset), scene);
+    if (scene.solver.crackPath == ecm::mpm::CrackPathRule::Tracked &&
+        scene.solver.shapeFunction != ecm::mpm::ShapeFunction::Linear)  // (docs/model.md, "Crack paths", Limits)
+      std::fprintf(stderr,
+                   "ecm-mpm: note: crack_path: tracked with shape_function: %s is not measured (a point's strain spans "
+                   "more than its cell there; the tracked band was measured with linear shape functions)\n",
+                   ecm::mpm::toString(scene.solver.shapeFunction));
     if (!restartDir.empty()) {
       const auto normal = [](const std::string& p) { return std::filesystem::path(p).lexically_normal(); };
       if (!outDir.empty() && normal(outDir) != normal(restartDir)) {

@@ -197,6 +197,8 @@ class RunLoop {
     for (const Platen& p : scene_.platens)
       for (const char* c : {"_ux_mm", "_uy_mm", "_rotation_rad", "_Fx_N", "_Fy_N", "_M_Nmm"}) columns.push_back(p.name + c);
     for (const Gauge& g : scene_.gauges) columns.push_back(g.name + "_mm");
+    if (stepper_.crackPaths().tracked())  // what the rule holds intact off the paths (docs/model.md, "Crack paths")
+      for (const char* c : {"held_past_onset", "held_max_overstress"}) columns.emplace_back(c);
     return columns;
   }
   std::vector<double> historyRow() const {
@@ -207,6 +209,8 @@ class RunLoop {
     }
     for (std::size_t g = 0; g < scene_.gauges.size(); ++g)
       row.push_back(mpm::gaugeReading(scene_.gauges[g], gaugePoints_[g], stepper_.kinematics()));
+    if (const CrackPaths& paths = stepper_.crackPaths(); paths.tracked())
+      row.insert(row.end(), {static_cast<double>(paths.held().count), paths.held().largestOverstress});
     return row;
   }
 

@@ -153,6 +153,7 @@ void updateStresses(const StepSetup& setup, long step, Particles& p, RunTotals& 
   if (tracked) {  // the paths grow from this step's new bands and held points, in particle order
     std::vector<OnsetCandidate> candidates;
     for (auto& h : held) candidates.insert(candidates.end(), h.begin(), h.end());
+    paths.noteHeld(candidates);
     std::vector<Vec2> opened;
     for (const Onset& o : all)
       if (o.bands.first) opened.push_back(p.position[o.particle]);

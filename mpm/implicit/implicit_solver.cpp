@@ -127,6 +127,7 @@ std::size_t ImplicitSolver::growCrackPaths(const Trial& t) {
   std::vector<Vec2> opened;
   for (std::size_t i = 0; i < particles_.size(); ++i)
     if (t.band[i] && particles_.band[i] < 0) opened.push_back(particles_.position[i]);
+  crackPaths_.noteHeld(t.held);
   if (opened.empty() && t.held.empty()) return 0;
   return crackPaths_.grow(opened, t.held, intactStressAverage(setup_.materials, particles_, &t.stress));
 }

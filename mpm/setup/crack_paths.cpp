@@ -21,7 +21,7 @@ CrackPathGeometry CrackPathGeometry::forGrid(const Vec2& origin, const Vec2& cel
   g.turnEvery = 0.5 * cell;
   g.interiorOverstress = 1.5;  // docs/model.md, "Crack paths"
   g.smallestKink = 5.0 * std::acos(-1.0) / 180.0;  // 5 degrees (docs/model.md, "Crack paths")
-  g.smallestRadius = std::max(15.0, 3.0 * cell);    // docs/model.md, "Crack paths"
+  g.smallestRadius = std::max(10.0, 3.0 * cell);    // docs/model.md, "Crack paths"
   return g;
 }
 

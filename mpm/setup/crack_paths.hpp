@@ -12,6 +12,7 @@
 // keep one CrackPaths,
 // read-only while the points update and grown between updates, in particle order. Under
 // CrackPathRule::Free none of it runs.
+#include <algorithm>
 #include <cstddef>
 #include <functional>
 #include <cstdint>
@@ -56,6 +57,13 @@ struct OnsetCandidate {
   Vec2 position = Vec2::Zero();
   double overstress = 1.0;        // sqrt(Y / Y_onset) of its elastic stress, Eq. (12) with D = 0
   Voigt stress = Voigt::Zero();   // that stress over the overstress: on the onset surface (MPa)
+};
+
+// The points held intact past onset after the last update (tracked paths only; history.csv's
+// held_past_onset and held_max_overstress): how much strength the rule lends the bulk off the paths.
+struct HeldPoints {
+  std::size_t count = 0;
+  double largestOverstress = 0.0;  // sqrt(Y / Y_onset), Eq. (12) with D = 0; 0 where none is held
 };
 
 // How a point's band opens in a cell of a path's band (band_kinematics.hpp).
@@ -127,6 +135,13 @@ class CrackPaths {
   // candidates are now in a crossed cell (they may open a band when their update is taken again).
   std::size_t grow(const std::vector<Vec2>& opened, std::vector<OnsetCandidate> candidates, const AveragedStress& averaged);
 
+  // Notes the points held past onset by the last update (called after every update, grown or not).
+  void noteHeld(const std::vector<OnsetCandidate>& candidates) {
+    held_ = {candidates.size(), 0.0};
+    for (const OnsetCandidate& c : candidates) held_.largestOverstress = std::max(held_.largestOverstress, c.overstress);
+  }
+  const HeldPoints& held() const { return held_; }
+
   const std::vector<CrackArm>& arms() const { return arms_; }
   const CrackPathGeometry& geometry() const { return geometry_; }
   CrackPathRule rule() const { return rule_; }
@@ -170,6 +185,7 @@ class CrackPaths {
   CrackPathRule rule_ = CrackPathRule::Free;
   CrackPathGeometry geometry_;
   std::vector<CrackArm> arms_;
+  HeldPoints held_;
   // Lookups of the arms, so that a point's query costs no walk over every path: the crossed cells,
   // and the cells within the exclusion radius of a path.
   struct CellBand {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -227,6 +228,38 @@ TEST(Checkpoint, StopAndResumeWithTrackedCrackPathsGivesTheSameOutputsBitwise) {
   ASSERT_TRUE(resumed.completed) << resumed.message();
   fs::remove(tmp.path() / "whole" / "summary.json");
   expectSameOutputs(tmp.path() / "whole", tmp.path() / "split");
+}
+
+// history.csv of a tracked run ends with what the rule holds intact off the paths
+// (docs/model.md, "Crack paths"): the points past onset, sqrt(Y / Y_onset) >= 1 by definition, and
+// the largest of those overstresses (0 where none is held). The block's growing crack holds the
+// points beside its path. A run under the free rule holds nothing and has no such columns.
+TEST(Checkpoint, ATrackedRunCountsThePointsItHoldsPastOnset) {
+  TempDir tmp;
+  Scene scene = crackingBlock();
+  scene.solver.crackPath = CrackPathRule::Tracked;
+  ASSERT_TRUE(runScene(scene, options(tmp.path() / "tracked")).completed);
+  const io::CsvTable h = io::readCsv(tmp.path() / "tracked" / "history.csv");
+  ASSERT_GE(h.header.size(), 2u);
+  const std::size_t count = h.header.size() - 2, largest = h.header.size() - 1;
+  EXPECT_EQ(h.header[count], "held_past_onset");
+  EXPECT_EQ(h.header[largest], "held_max_overstress");
+  std::size_t rowsHolding = 0;
+  for (const auto& row : h.rows) {
+    EXPECT_EQ(row[count], std::floor(row[count]));
+    if (row[count] == 0.0) {
+      EXPECT_EQ(row[largest], 0.0);
+    } else {
+      EXPECT_GE(row[largest], 1.0);
+      ++rowsHolding;
+    }
+  }
+  EXPECT_GT(rowsHolding, 0u);
+  scene.solver.crackPath = CrackPathRule::Free;
+  ASSERT_TRUE(runScene(scene, options(tmp.path() / "free")).completed);
+  const io::CsvTable f = io::readCsv(tmp.path() / "free" / "history.csv");
+  EXPECT_EQ(std::count(f.header.begin(), f.header.end(), "held_past_onset"), 0);
+  EXPECT_EQ(f.header.size(), h.header.size() - 2);
 }
 
 // With snapshot_every N the restarted run goes on with the same snapshot rows: the split run's

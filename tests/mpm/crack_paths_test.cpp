@@ -265,13 +265,13 @@ TEST(CrackPaths, ATipMovesToTheBandsThatOpenAheadOfItAndTurnsBeyondTheNoise) {
   EXPECT_EQ(paths.arms()[0].points.back(), tip);
 }
 
-// A path curves no tighter than smallestRadius (15 mm, 3 cells at least): in a field that asks a kink
+// A path curves no tighter than smallestRadius (10 mm, 3 cells at least): in a field that asks a kink
 // of 53 degrees at every vertex, each turnEvery of advance turns the tip by turnEvery /
 // smallestRadius, and the path runs on a polygon of that radius.
 TEST(CrackPaths, APathCurvesNoTighterThanItsSmallestRadius) {
   CrackPaths paths = unitGridPaths();
   const CrackPathGeometry& g = paths.geometry();
-  EXPECT_DOUBLE_EQ(g.smallestRadius, 15.0);  // (unit cells: 15 mm)
+  EXPECT_DOUBLE_EQ(g.smallestRadius, 10.0);  // (unit cells: 10 mm)
   EXPECT_DOUBLE_EQ(g.averaging, 20.0);
   paths.restoreArms({{{Vec2(0.5, 0.5)}, Vec2(0.0, 1.0)}});
   double heading = 0.0;  // atan2(x, y): clockwise from +y (this shear turns the path the other way)

@@ -70,6 +70,29 @@ TEST(EcmMpm, AFailedRunExitsWithItsKindsStatusAndKeepsItsOutputs) {
   EXPECT_TRUE(fs::exists(out / "history.csv"));
 }
 
+// Tracked crack paths were measured with linear shape functions only (docs/model.md, "Crack
+// paths", Limits): a tracked scene with another says so on stderr; a linear one, or a free one,
+// says nothing of it.
+TEST(EcmMpm, TrackedPathsWithAnUnmeasuredShapeFunctionAreNoted) {
+  TempDir tmp;
+  std::string still = kThrownSquare;
+  still.replace(still.find("initial_velocity: [1.0e6, 0]"), 28, "initial_velocity: [0, 0]    ");
+  still.replace(still.find("end_time: 1.0e-4"), 16, "end_time: 1.0e-6");
+  const auto run = [&](const std::string& name, const std::string& solver) {
+    const fs::path scene = tmp.write(name + ".yaml", still + solver);
+    return mpm(shellQuoted(scene) + " -q --no-vtu --no-plot --out " + shellQuoted(tmp.path() / name), tmp);
+  };
+  const ToolRun ugimp = run("ugimp", "solver: {shape_function: ugimp}\n");
+  EXPECT_EQ(ugimp.status, ecm::io::kExitDone) << ugimp.err;
+  expectContains(ugimp.err, "note: crack_path: tracked with shape_function: ugimp is not measured");
+  const ToolRun linear = run("linear", "solver: {shape_function: linear}\n");
+  EXPECT_EQ(linear.status, ecm::io::kExitDone) << linear.err;
+  EXPECT_EQ(linear.err.find("note:"), std::string::npos) << linear.err;
+  const ToolRun free = run("free", "solver: {shape_function: ugimp, crack_path: free}\n");
+  EXPECT_EQ(free.status, ecm::io::kExitDone) << free.err;
+  EXPECT_EQ(free.err.find("note:"), std::string::npos) << free.err;
+}
+
 TEST(EcmMpm, MaxStepsStopsWithACheckpointThatResumesToCompletion) {
   TempDir tmp;
   const fs::path out = tmp.path() / "out";
