@@ -7,6 +7,7 @@
 // 10-20 the run failed, one status per failure kind (mpm/core/errors.hpp; summary.json's
 // failure.kind names it).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <optional>
 #include <atomic>
 #include <csignal>
@@ -94,7 +95,9 @@ int main(int argc, char** argv) {
   try {
     ecm::mpm::Scene scene = ecm::mpm::loadSceneFile(scenePath);
     if (!preset.empty()) ecm::mpm::applyPreset(*ecm::mpm::findPreset(preset), scene);
-    if (scene.solver.crackPath == ecm::mpm::CrackPathRule::Tracked &&
+    const bool enriched = std::any_of(scene.materials.begin(), scene.materials.end(),
+                                      [](const auto& m) { return m.model == ecm::ModelKind::Enriched; });
+    if (enriched && scene.solver.crackPath == ecm::mpm::CrackPathRule::Tracked &&
         scene.solver.shapeFunction != ecm::mpm::ShapeFunction::Linear)  // (docs/model.md, "Crack paths", Limits)
       std::fprintf(stderr,
                    "ecm-mpm: note: crack_path: tracked with shape_function: %s is not measured (a point's strain spans "

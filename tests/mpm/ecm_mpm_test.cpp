@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <tuple>
 
 #include "../io/temp_dir.hpp"
 #include "../run_tool.hpp"
@@ -71,26 +72,34 @@ TEST(EcmMpm, AFailedRunExitsWithItsKindsStatusAndKeepsItsOutputs) {
 }
 
 // Tracked crack paths were measured with linear shape functions only (docs/model.md, "Crack
-// paths", Limits): a tracked scene with another says so on stderr; a linear one, or a free one,
-// says nothing of it.
+// paths", Limits): a tracked scene of the enriched model with another says so on stderr; a
+// linear one, a free one, or one without an enriched material says nothing of it.
 TEST(EcmMpm, TrackedPathsWithAnUnmeasuredShapeFunctionAreNoted) {
   TempDir tmp;
+  const std::string material = (fs::path(ECM_SOURCE_DIR) / "data" / "materials" / "den-concrete-hordijk.yaml").string();
   std::string still = kThrownSquare;
   still.replace(still.find("initial_velocity: [1.0e6, 0]"), 28, "initial_velocity: [0, 0]    ");
   still.replace(still.find("end_time: 1.0e-4"), 16, "end_time: 1.0e-6");
-  const auto run = [&](const std::string& name, const std::string& solver) {
-    const fs::path scene = tmp.write(name + ".yaml", still + solver);
-    return mpm(shellQuoted(scene) + " -q --no-vtu --no-plot --out " + shellQuoted(tmp.path() / name), tmp);
+  std::string concrete = still;
+  concrete.replace(concrete.find("  - {name: elastic,"), std::string::npos, "");
+  concrete += "  - {file: " + shellQuoted(material) + "}\n"
+              "bodies:\n"
+              "  - {rectangle: {min: [2, 2], max: [4, 4]}, material: den-concrete-hordijk}\n"
+              "end_time: 1.0e-6\n"
+              "output_interval: 1.0e-6\n";
+  const auto run = [&](const std::string& name, const std::string& scene, const std::string& solver) {
+    const fs::path file = tmp.write(name + ".yaml", scene + solver);
+    const ToolRun r = mpm(shellQuoted(file) + " -q --no-vtu --no-plot --out " + shellQuoted(tmp.path() / name), tmp);
+    EXPECT_EQ(r.status, ecm::io::kExitDone) << name << ": " << r.err;
+    return r.err;
   };
-  const ToolRun ugimp = run("ugimp", "solver: {shape_function: ugimp}\n");
-  EXPECT_EQ(ugimp.status, ecm::io::kExitDone) << ugimp.err;
-  expectContains(ugimp.err, "note: crack_path: tracked with shape_function: ugimp is not measured");
-  const ToolRun linear = run("linear", "solver: {shape_function: linear}\n");
-  EXPECT_EQ(linear.status, ecm::io::kExitDone) << linear.err;
-  EXPECT_EQ(linear.err.find("note:"), std::string::npos) << linear.err;
-  const ToolRun free = run("free", "solver: {shape_function: ugimp, crack_path: free}\n");
-  EXPECT_EQ(free.status, ecm::io::kExitDone) << free.err;
-  EXPECT_EQ(free.err.find("note:"), std::string::npos) << free.err;
+  expectContains(run("ugimp", concrete, "solver: {shape_function: ugimp}\n"),
+                 "note: crack_path: tracked with shape_function: ugimp is not measured");
+  for (const auto& [name, scene, solver] :
+       {std::tuple{"linear", concrete, "solver: {shape_function: linear}\n"},
+        std::tuple{"free", concrete, "solver: {shape_function: ugimp, crack_path: free}\n"},
+        std::tuple{"elastic", still, "solver: {shape_function: ugimp}\n"}})
+    EXPECT_EQ(run(name, scene, solver).find("note:"), std::string::npos) << name;
 }
 
 TEST(EcmMpm, MaxStepsStopsWithACheckpointThatResumesToCompletion) {
