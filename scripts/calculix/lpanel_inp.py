@@ -33,6 +33,8 @@ def material_props(material, size):
     keys = ("youngs_modulus", "poisson_ratio", "tensile_strength", "softening_modulus", "softening_exponent", "band_width")
     if material.get("model") != "enriched":
         raise SystemExit(f"lpanel_inp: the material is {material.get('model')}; the UMAT is the enriched model")
+    if material.get("second_band", "off") != "off":
+        print("lpanel_inp: the UMAT carries one band: the material's second band is left out", file=sys.stderr)
     return [1.0] + [float(material[k]) for k in keys] + [size, 1.0]
 
 

@@ -7,6 +7,7 @@ the tests' curves (gnuplot; the scripts beside them, .gp), each run's legend say
 measures and a run that did not complete crossed where it stopped; each target's verdict is
 printed after its table and kept in OUT/summary.json ("targets"). Usage: report.py OUT_DIR. Units: mm, N, s."""
 import json
+import math
 import os
 import subprocess
 import sys
@@ -57,6 +58,57 @@ def mesh_verdict(label, peaks):
     return (f"{label}: the same peak within 3 % over the meshes", figure, spread <= 0.03 and len(peaks) == 3)
 
 
+def richardson(coarse, medium, fine, ratio=2.0, safety=1.25):
+    """Richardson extrapolation over three meshes refined by `ratio` (Celik et al. 2008, J. Fluids
+    Eng. 130:078001, with a constant ratio): the observed order p = ln|e32 / e21| / ln r, the
+    extrapolated value, and the fine mesh's grid convergence index GCI = safety |e21 / fine| /
+    (r^p - 1); oscillatory when the differences change sign, diverging when they grow with refinement
+    (then p is not an order of convergence). None when two meshes agree exactly."""
+    e21, e32 = medium - fine, coarse - medium
+    if e21 == 0 or e32 == 0:
+        return None
+    p = abs(math.log(abs(e32 / e21))) / math.log(ratio)
+    if p == 0:
+        return None
+    rp = ratio ** p
+    return {"order": p, "extrapolated": (rp * fine - medium) / (rp - 1), "gci_fine": safety * abs(e21 / fine) / (rp - 1),
+            "oscillatory": e21 * e32 < 0, "diverging": abs(e21) >= abs(e32)}
+
+
+def meshes(test, runs_):
+    """The peak over the meshes, per family of runs that differ only by their mesh (TEST[-rig]-MESH[-variant]):
+    its spread and, over three meshes, Richardson's order and GCI; printed and kept in summary.json (mesh_studies)."""
+    families = {}
+    for r in runs_:
+        parts = r.split("-")
+        k = next((i for i, w in enumerate(parts) if w in ("coarse", "medium", "fine")), None)
+        if k is None or report[r]["status"] != "completed" or test == "den" and parts[1] != "rig":
+            continue
+        family = "-".join(parts[:k] + ["MESH"] + parts[k + 1:])
+        families.setdefault(family, {})[parts[k]] = report[r]["peak_N"]
+    rows = []
+    for family, peaks in families.items():
+        verdict = mesh_verdict(family, {m: peaks[m] for m in ("coarse", "medium", "fine") if m in peaks})
+        if not verdict:
+            continue
+        study = {"peaks_N": peaks, "met": verdict[2]}
+        figure = verdict[1]
+        if len(peaks) == 3:
+            rich = richardson(peaks["coarse"], peaks["medium"], peaks["fine"])
+            if rich:
+                study.update(rich)
+                kind = ", ".join(k for k in ("oscillatory", "diverging") if rich[k])
+                figure += (f"; observed order {rich['order']:.2f}{f' ({kind})' if kind else ''}, "
+                           f"GCI {rich['gci_fine']:.1%}, extrapolated {rich['extrapolated'] / 1000:.2f} kN")
+        mesh_studies[family] = study
+        rows.append((verdict[0], figure, verdict[2]))
+    if rows:
+        print_verdicts([("meshes", rows)])
+
+
+mesh_studies = {}
+
+
 def judge(title, runs_, verdicts):
     """Each run's verdicts: printed under `title` and kept in the report (summary.json's targets)."""
     print(title)
@@ -85,6 +137,7 @@ if den:
               f"{fmt(c['post_peak_distance'])} | {c['work_N_mm']:.0f} (to {c['compared_up_to_mm']:.3f}) | {fmt(c['initial_slope_kN_per_um'])} | {fmt(c['dissipated_N_mm'], '{:.0f}')} | {fmt(c['wall_time_s'], '{:.0f}')} |")
     print()
     judge("DEN 4b targets (docs/validation.md):", den, den_verdicts)
+    meshes("den", den)
 lp = [r for r in runs if r.startswith("lpanel-")]
 if lp:
     print("| L-panel run | status | peak F (kN) | u at peak (mm) | inside envelope | post-peak distance (series A) | work to 1 mm (N mm) | slope (kN/mm) | dissipated (N mm) | wall (s) |")
@@ -97,15 +150,8 @@ if lp:
               f"{fmt(c['post_peak_distance_to_series_a'])} | {c['work_N_mm']:.0f} (to {c['compared_up_to_mm']:.2f}) | {fmt(c['initial_slope_kN_per_mm'])} | {fmt(c['dissipated_N_mm'], '{:.0f}')} | {fmt(c['wall_time_s'], '{:.0f}')} |")
     print()
     judge("L-panel targets (docs/validation.md):", lp, lpanel_verdicts)
-    # Over the meshes: the runs that differ only by their mesh (lpanel-MESH[-variant]).
-    families = {}
-    for r in lp:
-        parts = r.split("-")
-        if len(parts) >= 2 and parts[1] in ("coarse", "medium", "fine") and report[r]["status"] == "completed":
-            families.setdefault("-".join(parts[2:]) or "one band, explicit", {})[parts[1]] = report[r]["peak_N"]
-    mesh_rows = [v for v in (mesh_verdict("lpanel " + k, peaks) for k, peaks in families.items()) if v]
-    if mesh_rows:
-        print_verdicts([("meshes", mesh_rows)])
+    meshes("lpanel", lp)
+report["mesh_studies"] = mesh_studies
 json.dump(report, open(os.path.join(out, "summary.json"), "w"), indent=1)  # once, with the targets
 
 
@@ -116,32 +162,61 @@ DEN_RESULTS = ["peak_kN", "ratio", "delta_at_peak", "post_peak_den", "work_den",
 DEN_MESH = ["peak_kN", "ratio", "delta_at_peak", "post_peak_den", "work_den", "dissipated"]
 LPANEL = ["peak_kN", "u_at_peak", "inside", "post_peak_lpanel", "work_lpanel", "slope_lpanel", "dissipated"]
 DOC_ROWS = [
-    ("den-today-coarse", "compare.json", DEN_RESULTS, ["today's scene (`data/den/den-4b-coarse.yaml`), paper's law, delta = top edge"]),
-    ("den-rig-coarse-paper-law", "compare-platen.json", DEN_RESULTS, ["rig, paper's law, delta = the frame's travel"]),
-    ("den-rig-coarse-paper-law", "compare.json", DEN_RESULTS, ["rig, paper's law, delta = gauges"]),
-    ("den-rig-coarse", "compare.json", DEN_RESULTS, ["rig, Hordijk's law, gauges (**the validation scene**, explicit)"]),
+    # Section 1, the coarse DEN (`validate.sh DIR quick`): the gap from the paper's scene to the validation scene.
+    ("den-today-coarse", "compare.json", DEN_RESULTS, ["today's scene (`data/den/den-4b-coarse.yaml`), paper's law, free rule, delta = top edge"]),
+    ("den-rig-coarse-paper-law-free", "compare-platen.json", DEN_RESULTS, ["rig, paper's law, free rule, delta = the frame's travel"]),
+    ("den-rig-coarse-paper-law-free", "compare.json", DEN_RESULTS, ["rig, paper's law, free rule, delta = gauges"]),
+    ("den-rig-coarse-one-band-free", "compare.json", DEN_RESULTS, ["rig, Hordijk's law, gauges, free rule (the validation scene until 2026-12-07)"]),
+    ("den-rig-coarse-free", "compare.json", DEN_RESULTS, ["the same, second band"]),
+    ("den-rig-coarse", "compare.json", DEN_RESULTS, ["the same, tracked crack paths (**the validation scene**, explicit)"]),
     ("den-rig-coarse-implicit", "compare.json", DEN_RESULTS, ["the same, implicit (rate-free)"]),
-    ("den-rig-coarse-second-band", "compare.json", DEN_RESULTS, ["the same, explicit, second band"]),
-    ("den-rig-coarse", "compare.json", DEN_MESH, ["coarse (2.5 mm)", "explicit, one band"]),
-    ("den-rig-coarse-implicit", "compare.json", DEN_MESH, ["coarse", "implicit, one band"]),
-    ("den-rig-coarse-second-band", "compare.json", DEN_MESH, ["coarse", "explicit, second band"]),
-    ("den-rig-coarse-second-band-implicit", "compare.json", DEN_MESH, ["coarse", "implicit, second band"]),
-    ("den-rig-medium", "compare.json", DEN_MESH, ["medium (1.25 mm)", "explicit, one band"]),
-    ("den-rig-medium-implicit", "compare.json", DEN_MESH, ["medium", "implicit, one band"]),
-    ("den-rig-medium-second-band", "compare.json", DEN_MESH, ["medium", "explicit, second band"]),
-    ("den-rig-fine", "compare.json", DEN_MESH, ["fine (0.625 mm)", "explicit, one band"]),
-    ("den-rig-fine-second-band", "compare.json", DEN_MESH, ["fine", "explicit, second band"]),
-    ("lpanel-coarse", "compare.json", LPANEL, ["coarse (10 mm), explicit"]),
+    ("den-rig-coarse-one-band", "compare.json", DEN_RESULTS, ["the validation scene with one band, explicit"]),
+    # Section 1, the DEN's meshes, tracked (`validate.sh DIR quick medium fine`).
+    ("den-rig-coarse", "compare.json", DEN_MESH, ["coarse (2.5 mm)", "explicit, second band"]),
+    ("den-rig-coarse-implicit", "compare.json", DEN_MESH, ["coarse", "implicit, second band"]),
+    ("den-rig-coarse-one-band", "compare.json", DEN_MESH, ["coarse", "explicit, one band"]),
+    ("den-rig-coarse-implicit-one-band", "compare.json", DEN_MESH, ["coarse", "implicit, one band"]),
+    ("den-rig-medium", "compare.json", DEN_MESH, ["medium (1.25 mm)", "explicit, second band"]),
+    ("den-rig-medium-implicit", "compare.json", DEN_MESH, ["medium", "implicit, second band"]),
+    ("den-rig-medium-one-band", "compare.json", DEN_MESH, ["medium", "explicit, one band"]),
+    ("den-rig-medium-implicit-one-band", "compare.json", DEN_MESH, ["medium", "implicit, one band"]),
+    ("den-rig-fine", "compare.json", DEN_MESH, ["fine (0.625 mm)", "explicit, second band"]),
+    ("den-rig-fine-implicit", "compare.json", DEN_MESH, ["fine", "implicit, second band"]),
+    ("den-rig-fine-one-band", "compare.json", DEN_MESH, ["fine", "explicit, one band"]),
+    # Section 2, the L-panel, tracked.
+    ("lpanel-coarse", "compare.json", LPANEL, ["coarse (10 mm), explicit (**the validation scene**)"]),
     ("lpanel-coarse-implicit", "compare.json", LPANEL, ["coarse, implicit"]),
-    ("lpanel-coarse-paper-n", "compare.json", LPANEL, ["coarse, explicit, the paper's n = 0.128"]),
-    ("lpanel-coarse-second-band", "compare.json", LPANEL, ["coarse, explicit, **second band**"]),
     ("lpanel-medium", "compare.json", LPANEL, ["medium (5 mm), explicit"]),
-    ("lpanel-medium-second-band", "compare.json", LPANEL, ["medium, explicit, **second band**"]),
+    ("lpanel-medium-implicit", "compare.json", LPANEL, ["medium, implicit"]),
     ("lpanel-fine", "compare.json", LPANEL, ["fine (2.5 mm), explicit"]),
-    ("lpanel-medium-implicit", "compare.json", LPANEL, ["medium, **implicit** (rate-free)"]),
-    ("lpanel-fine-second-band", "compare.json", LPANEL, ["fine, explicit, **second band**"]),
-    ("lpanel-coarse-second-band-implicit", "compare.json", LPANEL, ["coarse, **implicit, second band**"]),
-    ("lpanel-medium-second-band-implicit", "compare.json", LPANEL, ["medium, **implicit, second band**"]),
+    ("lpanel-fine-implicit", "compare.json", LPANEL, ["fine, implicit"]),
+    ("lpanel-coarse-one-band", "compare.json", LPANEL, ["coarse, explicit, one band"]),
+    ("lpanel-coarse-implicit-one-band", "compare.json", LPANEL, ["coarse, implicit, one band"]),
+    ("lpanel-medium-one-band", "compare.json", LPANEL, ["medium, explicit, one band"]),
+    ("lpanel-medium-implicit-one-band", "compare.json", LPANEL, ["medium, implicit, one band"]),
+    ("lpanel-fine-one-band", "compare.json", LPANEL, ["fine, explicit, one band"]),
+    ("lpanel-coarse-paper-n", "compare.json", LPANEL, ["coarse, explicit, one band, the paper's n = 0.128"]),
+    # "Before tracking" (`validate.sh DIR free`): the tables of sections 1 and 2 as the free rule gave them.
+    ("den-rig-coarse-one-band-free", "compare.json", DEN_MESH, ["free: coarse (2.5 mm)", "explicit, one band"]),
+    ("den-rig-coarse-implicit-one-band-free", "compare.json", DEN_MESH, ["free: coarse", "implicit, one band"]),
+    ("den-rig-coarse-free", "compare.json", DEN_MESH, ["free: coarse", "explicit, second band"]),
+    ("den-rig-coarse-implicit-free", "compare.json", DEN_MESH, ["free: coarse", "implicit, second band"]),
+    ("den-rig-medium-one-band-free", "compare.json", DEN_MESH, ["free: medium (1.25 mm)", "explicit, one band"]),
+    ("den-rig-medium-implicit-one-band-free", "compare.json", DEN_MESH, ["free: medium", "implicit, one band"]),
+    ("den-rig-medium-free", "compare.json", DEN_MESH, ["free: medium", "explicit, second band"]),
+    ("den-rig-fine-one-band-free", "compare.json", DEN_MESH, ["free: fine (0.625 mm)", "explicit, one band"]),
+    ("den-rig-fine-free", "compare.json", DEN_MESH, ["free: fine", "explicit, second band"]),
+    ("lpanel-coarse-one-band-free", "compare.json", LPANEL, ["free: coarse (10 mm), explicit"]),
+    ("lpanel-coarse-implicit-one-band-free", "compare.json", LPANEL, ["free: coarse, implicit"]),
+    ("lpanel-coarse-paper-n-free", "compare.json", LPANEL, ["free: coarse, explicit, the paper's n = 0.128"]),
+    ("lpanel-coarse-free", "compare.json", LPANEL, ["free: coarse, explicit, **second band**"]),
+    ("lpanel-medium-one-band-free", "compare.json", LPANEL, ["free: medium (5 mm), explicit"]),
+    ("lpanel-medium-free", "compare.json", LPANEL, ["free: medium, explicit, **second band**"]),
+    ("lpanel-fine-one-band-free", "compare.json", LPANEL, ["free: fine (2.5 mm), explicit"]),
+    ("lpanel-medium-implicit-one-band-free", "compare.json", LPANEL, ["free: medium, **implicit** (rate-free)"]),
+    ("lpanel-fine-free", "compare.json", LPANEL, ["free: fine, explicit, **second band**"]),
+    ("lpanel-coarse-implicit-free", "compare.json", LPANEL, ["free: coarse, **implicit, second band**"]),
+    ("lpanel-medium-implicit-free", "compare.json", LPANEL, ["free: medium, **implicit, second band**"]),
 ]
 
 

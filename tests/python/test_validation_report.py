@@ -52,3 +52,43 @@ def test_each_target_gets_its_verdict_and_a_stopped_run_is_marked(tmp_path):
     assert "lpanel-coarse-implicit (F, u: the load platen's), failed at 0.400 mm" in script
     assert "using (0.4):(12.0)" in script and "pt 2" in script  # the cross where it stopped
     assert "delta: the gauges, as the test" in (tmp_path / "den.gp").read_text()
+
+
+def test_a_mesh_study_recovers_the_order_and_limit_of_a_power_law(tmp_path):
+    # Peaks that follow P(h) = P0 + C h^2 exactly, on meshes h = 4, 2, 1 (P0 = 18 kN, C = 100 N):
+    # 19.6, 18.4 and 18.1 kN. Richardson's extrapolation recovers the order 2 and P0 exactly, and
+    # the fine mesh's GCI is 1.25 (300 / 18100) / (2^2 - 1) = 0.6906 % (Celik et al. 2008).
+    # The same peaks in reverse order (the fine mesh the farthest) diverge. A third family,
+    # 18.26 / 18.57 / 18.40 kN, goes up and down: oscillatory, order
+    # ln(0.31 / 0.17) / ln 2 = 0.8667, spread (18.57 - 18.26) / 18.57 = 1.67 %.
+    def den_run(name, peak):
+        c = {"delta_measured_by": "gauges", "peak_N": peak, "delta_at_peak_mm": 0.008, "test_peak_N": 11980.0,
+             "test_delta_at_peak_mm": 0.0088, "peak_ratio": peak / 11980.0, "post_peak_distance": 0.5,
+             "compared_up_to_mm": 0.1, "work_N_mm": 600.0, "test_work_N_mm": 537.0, "initial_slope_kN_per_um": 2.9,
+             "test_initial_slope_kN_per_um": 3.74}
+        _run(tmp_path, name, "completed", c, [(x / 1000, peak * (x / 8 if x < 8 else 8 / x)) for x in range(0, 101)],
+             "delta_mm,P_ecm_N,P_test_N")
+
+    for mesh, peak in (("coarse", 19600.0), ("medium", 18400.0), ("fine", 18100.0)):
+        den_run(f"den-rig-{mesh}-one-band", peak)
+    for mesh, peak in (("coarse", 18260.0), ("medium", 18570.0), ("fine", 18400.0)):
+        den_run(f"den-rig-{mesh}", peak)
+    for mesh, peak in (("coarse", 18100.0), ("medium", 18400.0), ("fine", 19600.0)):  # the first family, reversed
+        den_run(f"den-rig-{mesh}-free", peak)
+    p = subprocess.run([sys.executable, "scripts/validation/report.py", str(tmp_path)], cwd=SOURCE, capture_output=True,
+                       text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    studies = json.loads((tmp_path / "summary.json").read_text())["mesh_studies"]
+    power = studies["den-rig-MESH-one-band"]
+    assert power["order"] == pytest.approx(2.0, rel=1e-12)
+    assert power["extrapolated"] == pytest.approx(18000.0, rel=1e-12)
+    assert power["gci_fine"] == pytest.approx(1.25 * 300.0 / 18100.0 / 3.0, rel=1e-12)
+    assert not power["oscillatory"] and not power["diverging"] and not power["met"]  # 19.6 against 18.1 kN: 7.7 %
+    growing = studies["den-rig-MESH-free"]  # the differences grow fourfold with refinement: no order
+    assert growing["diverging"] and not growing["oscillatory"]
+    assert "observed order 2.00 (diverging)" in p.stdout, p.stdout
+    wavy = studies["den-rig-MESH"]
+    assert wavy["oscillatory"] and not wavy["diverging"] and wavy["met"]
+    assert wavy["order"] == pytest.approx(0.8667, abs=1e-4)
+    assert "den-rig-MESH: the same peak within 3 % over the meshes: **met** (coarse 18.26, medium 18.57, fine 18.40 kN: 1.7%; " \
+           "observed order 0.87 (oscillatory)" in p.stdout, p.stdout
