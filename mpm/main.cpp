@@ -25,6 +25,7 @@
 #include "mpm/scene/presets.hpp"
 #include "mpm/run.hpp"
 #include "mpm/scene/scene_yaml.hpp"
+#include "mpm/scene/unmeasured.hpp"
 
 namespace {
 
@@ -95,14 +96,8 @@ int main(int argc, char** argv) {
   try {
     ecm::mpm::Scene scene = ecm::mpm::loadSceneFile(scenePath);
     if (!preset.empty()) ecm::mpm::applyPreset(*ecm::mpm::findPreset(preset), scene);
-    const bool enriched = std::any_of(scene.materials.begin(), scene.materials.end(),
-                                      [](const auto& m) { return m.model == ecm::ModelKind::Enriched; });
-    if (enriched && scene.solver.crackPath == ecm::mpm::CrackPathRule::Tracked &&
-        scene.solver.shapeFunction != ecm::mpm::ShapeFunction::Linear)  // (docs/model.md, "Crack paths", Limits)
-      std::fprintf(stderr,
-                   "ecm-mpm: note: crack_path: tracked with shape_function: %s is not measured (a point's strain spans "
-                   "more than its cell there; the tracked band was measured with linear shape functions)\n",
-                   ecm::mpm::toString(scene.solver.shapeFunction));
+    for (const std::string& note : ecm::mpm::unmeasuredCombinations(scene))
+      std::fprintf(stderr, "ecm-mpm: note: %s\n", note.c_str());
     if (!restartDir.empty()) {
       const auto normal = [](const std::string& p) { return std::filesystem::path(p).lexically_normal(); };
       if (!outDir.empty() && normal(outDir) != normal(restartDir)) {

@@ -3,6 +3,7 @@
 
 #include <numbers>
 
+#include "mpm/scene/unmeasured.hpp"
 #include "mpm/setup/seeding.hpp"
 #include "test_scenes.hpp"
 
@@ -23,6 +24,27 @@ TEST(TimeFunction, Values) {
   EXPECT_DOUBLE_EQ(t(2.0), 0.0);
   EXPECT_DOUBLE_EQ(t(9.0), -2.0);
   EXPECT_THROW(TimeFunction::table({0.0, 0.0}, {1.0, 2.0}).validate(), std::invalid_argument);
+}
+
+// Tracked paths were measured with linear shape functions only (docs/model.md, "Crack paths",
+// Limits): an enriched scene with tracked paths and another shape function is noted; linear
+// shape functions, the free rule and a scene with no band (elastic) are not.
+TEST(Unmeasured, TrackedPathsWithWideShapeFunctionsAreNotedForEnrichedScenesOnly) {
+  Scene s = notchedCrackingBlock();
+  s.solver.crackPath = CrackPathRule::Tracked;
+  EXPECT_TRUE(unmeasuredCombinations(s).empty());
+  for (const ShapeFunction wide : {ShapeFunction::UGimp, ShapeFunction::BSpline2}) {
+    s.solver.shapeFunction = wide;
+    const std::vector<std::string> notes = unmeasuredCombinations(s);
+    ASSERT_EQ(notes.size(), 1u);
+    EXPECT_NE(notes[0].find(std::string("shape_function: ") + toString(wide)), std::string::npos) << notes[0];
+  }
+  s.solver.crackPath = CrackPathRule::Free;
+  EXPECT_TRUE(unmeasuredCombinations(s).empty());
+  Scene elastic = tensionBlock();
+  elastic.solver.crackPath = CrackPathRule::Tracked;
+  elastic.solver.shapeFunction = ShapeFunction::UGimp;
+  EXPECT_TRUE(unmeasuredCombinations(elastic).empty());
 }
 
 TEST(Geometry, PolygonAndCircle) {
