@@ -3,8 +3,10 @@
 // and the reason.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "../io/temp_dir.hpp"
@@ -175,10 +177,32 @@ TEST(ImplicitScene, AStabilisedStepRestartsBitwiseStoppedBeforeOrAfterIt) {
 }
 
 // The same with tracked crack paths: the checkpoint holds them (the DEN coarse cracks from step 40).
+// Its history.csv ends with what the rule holds intact past onset (docs/model.md, "Crack paths"),
+// noted by the implicit solver after each step: a whole count, and sqrt(Y / Y_onset) >= 1 of the
+// most overstressed held point (0 where none is held); the DEN holds points by step 60.
 TEST(ImplicitScene, AStoppedRunWithTrackedCrackPathsRestartsBitwise) {
   Scene scene = loadSceneFile(std::filesystem::path(ECM_SOURCE_DIR) / "data" / "den" / "den-4b-coarse-implicit.yaml");
   scene.solver.crackPath = CrackPathRule::Tracked;
-  expectRestartIsBitwise(scene, 45, 60);
+  const std::string history = expectRestartIsBitwise(scene, 45, 60);
+  std::stringstream in(history);
+  std::string line;
+  std::getline(in, line);
+  ASSERT_EQ(line.substr(line.rfind(',') + 1), "held_max_overstress");
+  ASSERT_NE(line.find(",held_past_onset,held_max_overstress"), std::string::npos);
+  int rowsHolding = 0;
+  while (std::getline(in, line)) {
+    const double largest = std::stod(line.substr(line.rfind(',') + 1));
+    const std::string rest = line.substr(0, line.rfind(','));
+    const double count = std::stod(rest.substr(rest.rfind(',') + 1));
+    EXPECT_EQ(count, std::floor(count));
+    if (count == 0.0) {
+      EXPECT_EQ(largest, 0.0);
+    } else {
+      EXPECT_GE(largest, 1.0);
+      ++rowsHolding;
+    }
+  }
+  EXPECT_GT(rowsHolding, 0);
 }
 
 TEST(ImplicitScene, AStoppedDisplacementControlledRunRestartsBitwiseOnAnotherThreadCount) {
