@@ -35,7 +35,7 @@ TEST(Validation, TheDenRigCoarseToItsPeak) {
   const auto& peak = peakRow(history, "upper-frame_Fy_N");
   const double p = peak.at("upper-frame_Fy_N");
   EXPECT_NEAR(p, 18260.0, 0.005 * 18260.0);
-  EXPECT_EQ(peak.at("upper-frame_Fx_N"), 10000.0);
+  EXPECT_NEAR(peak.at("upper-frame_Fx_N"), 10000.0, 1e-9 * 10000.0);  // force-driven: P_s to round-off (a Debug build sums it otherwise)
   EXPECT_EQ(peak.at("upper-frame_rotation_rad"), 0.0);
   EXPECT_NEAR(peak.at("upper-frame_Fx_N") + peak.at("bottom_rx_N") + peak.at("right-lower_rx_N"), 0.0, 0.01 * p);
   EXPECT_NEAR(peak.at("upper-frame_Fy_N") + peak.at("bottom_ry_N") + peak.at("right-lower_ry_N"), 0.0, 0.01 * p);
