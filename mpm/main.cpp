@@ -7,7 +7,6 @@
 // 10-20 the run failed, one status per failure kind (mpm/core/errors.hpp; summary.json's
 // failure.kind names it).
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <optional>
 #include <atomic>
 #include <csignal>
